@@ -1,0 +1,77 @@
+// vdec: the command-line front end. `vdec run SCENE --out DIR` reads a scene, runs it and
+// writes DIR/results.json; the exit code says what went wrong (core/errors.hpp).
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "core/cycle.hpp"
+#include "core/errors.hpp"
+#include "io/build_info.hpp"
+#include "io/results_writer.hpp"
+#include "io/scene_reader.hpp"
+
+namespace {
+
+int runScene(const std::string& scenePath, const std::string& outDir, const std::vector<std::string>& overrides,
+             bool profile) {
+  const auto start = std::chrono::steady_clock::now();
+  vdec::Scene scene = vdec::readScene(scenePath, overrides);
+  scene.settings.profile = profile;
+  scene.settings.progress = true;
+  vdec::Cycle cycle(scene.model, scene.settings, scene.histories);
+  const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const vdec::RunReport report = cycle.run();
+  vdec::writeResults(outDir, scene, report, setup);
+  if (profile) {
+    std::fprintf(stderr, "stage               seconds    share   ns/cycle\n");
+    double total = 0.0;
+    for (const auto& s : report.profile) total += s.seconds;
+    for (const auto& s : report.profile)
+      std::fprintf(stderr, "%-18s %9.4f %7.1f%% %10.1f\n", s.name.c_str(), s.seconds,
+                   total > 0 ? 100.0 * s.seconds / total : 0.0,
+                   report.cycles ? 1e9 * s.seconds / static_cast<double>(report.cycles) : 0.0);
+    std::fprintf(stderr, "cycles %lld, contacts %zu, blocks %d, detection scans %d\n", report.cycles,
+                 scene.model.contacts.size(), scene.model.blocks.size(), report.detectionScans);
+  }
+  if (report.errorCode != 0) {
+    std::fprintf(stderr, "vdec: error: %s\n(results up to the failure written to %s/results.json)\n",
+                 report.error.c_str(), outDir.c_str());
+    return report.errorCode;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"vdec: Verified Distinct Element Code, a 2D distinct element code for jointed rock"};
+  app.set_version_flag("--version", std::string("vdec ") + vdec::build::version + " (" + vdec::build::gitCommit +
+                                        ", " + vdec::build::buildType + ", " + vdec::build::compiler + ")");
+  app.require_subcommand(1);
+  std::string scenePath, outDir;
+  std::vector<std::string> overrides;
+  bool profile = false;
+  CLI::App* run = app.add_subcommand("run", "run a scene and write DIR/results.json");
+  run->add_option("scene", scenePath, "scene file (TOML)")->required();
+  run->add_option("--out", outDir, "output directory")->required();
+  run->add_option("--set", overrides, "override a scene key, e.g. --set solver.frac=0.2 (repeatable)");
+  run->add_flag("--profile", profile, "print the time spent in each stage of the cycle");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : static_cast<int>(vdec::ExitCode::Usage);
+  }
+  try {
+    return runScene(scenePath, outDir, overrides, profile);
+  } catch (const vdec::Error& e) {
+    std::fprintf(stderr, "vdec: error: %s\n", e.what());
+    return static_cast<int>(e.code());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vdec: internal error: %s\n", e.what());
+    return static_cast<int>(vdec::ExitCode::Internal);
+  }
+}

@@ -1,0 +1,163 @@
+#include "contact/contact_detection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "contact/contact_geometry.hpp"
+#include "core/errors.hpp"
+
+namespace vdec {
+
+namespace {
+
+struct Key {
+  int corner, blockB;
+  bool operator<(const Key& o) const { return corner != o.corner ? corner < o.corner : blockB < o.blockB; }
+  bool operator==(const Key& o) const { return corner == o.corner && blockB == o.blockB; }
+};
+
+bool isFree(const Model& m, int b) { return m.blocks.movesFreely(b); }
+
+}  // namespace
+
+std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m) {
+  const int n = m.blocks.size();
+  const double inflate = 0.5 * m.contactTolerance;
+  minX_.assign(n, INFINITY);
+  maxX_.assign(n, -INFINITY);
+  minY_.assign(n, INFINITY);
+  maxY_.assign(n, -INFINITY);
+  for (int v = 0; v < m.vertices.size(); ++v) {
+    const int b = m.vertices.block[v];
+    const Vec2 p = m.vertices.position[v];
+    minX_[b] = std::min(minX_[b], p.x - inflate);
+    maxX_[b] = std::max(maxX_[b], p.x + inflate);
+    minY_[b] = std::min(minY_[b], p.y - inflate);
+    maxY_[b] = std::max(maxY_[b], p.y + inflate);
+  }
+  if (static_cast<int>(order_.size()) != n) {
+    order_.resize(n);
+    for (int i = 0; i < n; ++i) order_[i] = i;
+  }
+  // Insertion sort: the order from the previous scan is nearly right, so this is close to
+  // linear; ties broken by id keep the result independent of history.
+  auto before = [&](int a, int b) { return minX_[a] != minX_[b] ? minX_[a] < minX_[b] : a < b; };
+  for (int i = 1; i < n; ++i) {
+    const int key = order_[i];
+    int j = i - 1;
+    while (j >= 0 && before(key, order_[j])) {
+      order_[j + 1] = order_[j];
+      --j;
+    }
+    order_[j + 1] = key;
+  }
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < n; ++i) {
+    const int a = order_[i];
+    for (int j = i + 1; j < n && minX_[order_[j]] <= maxX_[a]; ++j) {
+      const int b = order_[j];
+      if (minY_[b] > maxY_[a] || minY_[a] > maxY_[b]) continue;
+      if (!isFree(m, a) && !isFree(m, b)) continue;  // two driven blocks exchange nothing
+      pairs.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+void ContactDetection::scan(Model& m) {
+  ++scans_;
+  motionSinceScan_ = 0.0;
+  std::vector<Contact> previous = std::move(m.contacts);
+  std::sort(previous.begin(), previous.end(),
+            [](const Contact& a, const Contact& b) { return Key{a.corner, a.blockB} < Key{b.corner, b.blockB}; });
+  std::vector<Contact> found;
+  auto addCornersOf = [&](int a, int b) {
+    const int first = m.blocks.firstVertex[a], last = first + m.blocks.vertexCount[a];
+    for (int v = first; v < last; ++v) {
+      const FeatureHit hit = nearestFeature(m, v, b);
+      if (!(hit.overlap >= -m.contactTolerance)) continue;
+      Contact c;
+      c.corner = v;
+      c.blockA = a;
+      c.blockB = b;
+      c.feature = hit.feature;
+      c.featureKind = hit.kind;
+      c.normal = hit.normal;
+      c.point = hit.point;
+      c.overlap = hit.overlap;
+      found.push_back(c);
+    }
+  };
+  for (const auto& [a, b] : candidatePairs(m)) {
+    addCornersOf(a, b);
+    addCornersOf(b, a);
+  }
+  std::sort(found.begin(), found.end(),
+            [](const Contact& a, const Contact& b) { return Key{a.corner, a.blockB} < Key{b.corner, b.blockB}; });
+
+  // Two touching corners can each see the other: keep one contact for the pair. A corner that
+  // sees the other corner yields to any contact that corner has on this block; of two mutual
+  // corner-corner contacts the one owned by the lower vertex id stays.
+  auto findFound = [&](int corner, int blockB) -> const Contact* {
+    auto it = std::lower_bound(found.begin(), found.end(), Key{corner, blockB},
+                               [](const Contact& c, const Key& k) { return Key{c.corner, c.blockB} < k; });
+    return (it != found.end() && Key{it->corner, it->blockB} == Key{corner, blockB}) ? &*it : nullptr;
+  };
+  std::vector<Contact> kept;
+  kept.reserve(found.size());
+  for (const Contact& c : found) {
+    if (c.featureKind == FeatureKind::Corner) {
+      const Contact* reverse = findFound(c.feature, c.blockA);
+      if (reverse && (reverse->featureKind == FeatureKind::Edge || reverse->feature != c.corner || c.feature < c.corner))
+        continue;
+    }
+    kept.push_back(c);
+  }
+
+  // Carry the state of contacts that persist; initialise the new ones.
+  const bool initial = m.cycle == 0;
+  std::size_t p = 0;
+  for (Contact& c : kept) {
+    while (p < previous.size() && Key{previous[p].corner, previous[p].blockB} < Key{c.corner, c.blockB}) ++p;
+    if (p < previous.size() && Key{previous[p].corner, previous[p].blockB} == Key{c.corner, c.blockB}) {
+      const Contact& old = previous[p];
+      c = old;
+      continue;
+    }
+    c.joint = m.jointMaterialFor(c.blockA, c.blockB);
+    const JointMaterial& j = m.jointMaterials[c.joint];
+    const double weight = j.law == JointLaw::PointContact ? 1.0 : contactLength(m, c.corner, {c.feature, c.featureKind, c.normal, c.point, c.overlap});
+    // A contact found at a gap starts open, stress-free once the gap closes.
+    c.elasticNormal = j.kn * weight * c.overlap;
+    c.open = c.overlap < 0.0;
+    // Model #5: only contacts present at the start are bonded rock; faces that come together
+    // later have no cohesion or tensile strength.
+    c.intact = initial || j.law != JointLaw::CoulombFracture;
+    const double touching = 1e-6 * m.roundingLength;
+    if (initial && c.overlap > touching) {
+      std::ostringstream s;
+      s << "blocks '" << m.blocks.name[c.blockA] << "' and '" << m.blocks.name[c.blockB]
+        << "' overlap at the start (corner " << c.corner - m.blocks.firstVertex[c.blockA] << " of '"
+        << m.blocks.name[c.blockA] << "' is " << c.overlap << " m inside); move them apart so they at most touch";
+      throw GeometryError(s.str());
+    }
+    if (initial && c.overlap >= -touching) {
+      c.elasticNormal = 0.0;  // faces touching at the start: closed and stress-free
+      c.open = false;
+    }
+  }
+  m.contacts = std::move(kept);
+}
+
+void ContactDetection::initialise(Model& m) {
+  scan(m);
+}
+
+void ContactDetection::update(Model& m, double largestStepDisplacement) {
+  motionSinceScan_ += largestStepDisplacement;
+  if (motionSinceScan_ > 0.5 * m.contactTolerance) scan(m);
+}
+
+}  // namespace vdec

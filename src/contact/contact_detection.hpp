@@ -1,0 +1,31 @@
+#pragma once
+// Contact detection: a sort-and-sweep broad phase over block bounding boxes, then the rounded-
+// corner narrow phase for each candidate pair. Detection runs only when blocks may have moved
+// far enough to make or break a contact: after the accumulated largest vertex displacement
+// exceeds half the contact tolerance, no pair can have closed a gap larger than the tolerance.
+#include <vector>
+
+#include "core/model.hpp"
+
+namespace vdec {
+
+class ContactDetection {
+ public:
+  // First detection. Contacts found here are "initial": bonded joints keep their tensile
+  // strength and cohesion. Throws GeometryError naming the blocks if any overlap at the start.
+  void initialise(Model& model);
+  // Called once per step with the largest vertex displacement of that step.
+  void update(Model& model, double largestStepDisplacement);
+  int scans() const { return scans_; }
+
+ private:
+  void scan(Model& model);
+  std::vector<std::pair<int, int>> candidatePairs(const Model& model);
+
+  double motionSinceScan_ = 0.0;
+  int scans_ = 0;
+  std::vector<int> order_;  // blocks sorted by bounding-box minimum x, reused between scans
+  std::vector<double> minX_, maxX_, minY_, maxY_;
+};
+
+}  // namespace vdec

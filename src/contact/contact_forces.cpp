@@ -1,0 +1,73 @@
+#include "contact/contact_forces.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "contact/contact_geometry.hpp"
+#include "core/errors.hpp"
+#include "joint/joint_laws.hpp"
+
+namespace vdec {
+
+namespace {
+
+[[noreturn]] void reportOverlap(const Model& m, const Contact& c, std::size_t index) {
+  std::ostringstream s;
+  s << "contact " << index << " (corner " << c.corner - m.blocks.firstVertex[c.blockA] << " of block '"
+    << m.blocks.name[c.blockA] << "' on block '" << m.blocks.name[c.blockB] << "') overlaps by " << c.overlap
+    << " m, more than half the rounding length (" << 0.5 * m.roundingLength << " m) at cycle " << m.cycle
+    << ", time " << m.time << " s. The joint is too soft for its load or the step is unstable: raise the "
+    << "joint stiffness kn, lower solver.frac, or raise model.rounding.";
+  throw OverlapError(s.str());
+}
+
+}  // namespace
+
+ContactStepTotals computeContactForces(Model& m, double dt) {
+  ContactStepTotals totals;
+  Blocks& bl = m.blocks;
+  const double overlapLimit = 0.5 * m.roundingLength;
+  for (std::size_t i = 0; i < m.contacts.size(); ++i) {
+    Contact& c = m.contacts[i];
+    const FeatureHit hit = followFeature(m, c.corner, c.blockB, c.feature, c.featureKind);
+    const double dun = hit.overlap - c.overlap;  // closing positive
+    c.feature = hit.feature;
+    c.featureKind = hit.kind;
+    c.normal = hit.normal;
+    c.point = hit.point;
+    c.overlap = hit.overlap;
+    if (c.overlap > overlapLimit) reportOverlap(m, c, i);
+
+    const int a = c.blockA, b = c.blockB;
+    const Vec2 ra = c.point - bl.centroid[a], rb = c.point - bl.centroid[b];
+    // Velocities are those of the half step just ended, so v dt is this step's increment.
+    const Vec2 va = bl.velocity[a] + bl.angularVelocity[a] * perp(ra);
+    const Vec2 vb = bl.velocity[b] + bl.angularVelocity[b] * perp(rb);
+    const Vec2 tangent{c.normal.y, -c.normal.x};
+    const double dus = dot(va - vb, tangent) * dt;
+
+    const JointMaterial& j = m.jointMaterials[c.joint];
+    c.length = contactLength(m, c.corner, hit);
+    const double weight = j.law == JointLaw::PointContact ? 1.0 : c.length;
+    updateJointForces(j, c, weight, dun, dus);
+    c.normalDisplacement += dun;
+    c.shearDisplacement += dus;
+
+    // Force on A from B; the shear force resists A's motion along the tangent.
+    const Vec2 f = c.normalForce * c.normal - c.shearForce * tangent;
+    bl.force[a] += f;
+    bl.moment[a] += cross(ra, f);
+    bl.force[b] -= f;
+    bl.moment[b] -= cross(rb, f);
+
+    if (!c.open) {
+      totals.strainEnergy += 0.5 * (c.normalForce * c.normalForce / (j.kn * weight) +
+                                    c.shearForce * c.shearForce / (j.ks * weight));
+      totals.sumForceMagnitude += std::hypot(c.normalForce, c.shearForce);
+      ++totals.closedContacts;
+    }
+  }
+  return totals;
+}
+
+}  // namespace vdec

@@ -1,0 +1,18 @@
+#pragma once
+// The contact-force stage: per contact, update the geometry from the blocks' new positions,
+// form the relative displacement increments of the step, apply the joint law and add the
+// force and moment to both blocks.
+#include "core/model.hpp"
+
+namespace vdec {
+
+struct ContactStepTotals {
+  double strainEnergy = 0.0;        // elastic energy stored in the contact springs
+  double sumForceMagnitude = 0.0;   // over closed contacts, for the unbalanced-force ratio
+  int closedContacts = 0;
+};
+
+// Throws OverlapError naming the contact when an overlap exceeds half the rounding length.
+ContactStepTotals computeContactForces(Model& model, double dt);
+
+}  // namespace vdec

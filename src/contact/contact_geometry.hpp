@@ -1,0 +1,34 @@
+#pragma once
+// Contact geometry with rounded corners (NUREG/CR-5429 1.3.3.2, Fig. 1.3-2d).
+// Block B's rounded boundary is a cyclic chain of features: corner arc j, straight part of edge
+// j (from vertex j to j+1, shortened by d at both ends), corner arc j+1, ... Because the chain
+// is tangent-continuous, the nearest point of it to a corner-arc centre, and so the contact
+// normal, varies continuously as blocks move: corner-edge and corner-corner contacts blend.
+#include "core/model.hpp"
+
+namespace vdec {
+
+struct FeatureHit {
+  int feature = -1;                // vertex id on block B
+  FeatureKind kind = FeatureKind::Edge;
+  Vec2 normal;                     // unit, from B towards the corner
+  Vec2 point;                      // midway between the two surfaces
+  double overlap = 0.0;            // positive when interpenetrating
+};
+
+// Arc radius and centre, in the block's local frame, for every corner (set-up time).
+void computeCornerArcs(Model& model);
+// World positions of vertices and arc centres from each block's rigid motion.
+void placeBlockVertices(Model& model, int block);
+
+// The feature of B nearest the corner, searching all of B's features.
+FeatureHit nearestFeature(const Model& model, int corner, int blockB);
+// The same, walking from a previous feature along B's boundary: what a contact does each step.
+FeatureHit followFeature(const Model& model, int corner, int blockB, int feature, FeatureKind kind);
+
+// Contact length (1.3-2, Fig. 1.3-2c): half of each edge adjacent to the corner that lies along
+// the contacted surface (its far end, clipped to B's edge, within the contact tolerance of the
+// surface line); the rounding length d for a corner touching alone.
+double contactLength(const Model& model, int corner, const FeatureHit& hit);
+
+}  // namespace vdec

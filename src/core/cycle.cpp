@@ -1,0 +1,175 @@
+#include "core/cycle.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "contact/contact_forces.hpp"
+#include "core/errors.hpp"
+#include "motion/rigid_motion.hpp"
+
+namespace vdec {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+// A stable explicit run cannot hold more mechanical energy than it was given. The time-centred
+// kinetic energy of central differences overshoots the true energy by up to about the energy
+// itself as w dt approaches 2, so the alarm is set at an excess of three times the largest energy
+// supplied: an unstable mode grows by a factor of more than two per step and crosses it within a
+// few steps of becoming visible.
+constexpr double kEnergyExcessLimit = 3.0;
+}  // namespace
+
+Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histories)
+    : model_(model), settings_(settings), historySpecs_(std::move(histories)) {
+  histories_.resize(historySpecs_.size());
+  detection_.initialise(model_);
+  dt_ = rigidBlockTimeStep(model_, settings_.frac);
+  double scale = 0.0;
+  for (int b = 0; b < model_.blocks.size(); ++b) {
+    const Blocks& bl = model_.blocks;
+    if (!bl.movesFreely(b)) continue;
+    energy_.initial += 0.5 * (bl.mass[b] * dot(bl.velocity[b], bl.velocity[b]) +
+                              bl.inertia[b] * bl.angularVelocity[b] * bl.angularVelocity[b]);
+    scale += (bl.mass[b] * norm(model_.gravity) + norm(bl.appliedForce[b])) * model_.roundingLength;
+  }
+  supplied_ = energy_.initial;
+  energyFloor_ = 1e-9 * std::max(scale + energy_.initial, 1e-200);
+  buildStages();
+}
+
+void Cycle::buildStages() {
+  // The rigid-block scene: contacts, then motion. Later component models add their stages here,
+  // only when the scene has them.
+  stages_.push_back({"contact-detection", [this] {
+                       if (model_.cycle > 0) detection_.update(model_, largestStepDisplacement_);
+                     }});
+  stages_.push_back({"contact-forces", [this] {
+                       const ContactStepTotals t = computeContactForces(model_, dt_);
+                       strainEnergy_ = t.strainEnergy;
+                       meanContactForce_ = t.closedContacts ? t.sumForceMagnitude / t.closedContacts : 0.0;
+                     }});
+  stages_.push_back({"rigid-block-motion", [this] {
+                       const MotionStepTotals t = integrateRigidBlocks(model_, dt_, settings_.massDamping);
+                       kineticEnergy_ = t.kineticEnergy;
+                       largestUnbalanced_ = t.largestUnbalancedForce;
+                       largestStepDisplacement_ = t.largestDisplacement;
+                       // Centred in time like the kinetic energy: half of this step's work
+                       // belongs before the check, half after.
+                       supplied_ += 0.5 * t.externalWork;
+                       checkEnergy();
+                       supplied_ += 0.5 * t.externalWork;
+                       energy_.externalWork += t.externalWork;
+                       model_.time += dt_;
+                       ++model_.cycle;
+                     }});
+  if (!historySpecs_.empty()) stages_.push_back({"histories", [this] { recordHistories(); }});
+}
+
+void Cycle::checkEnergy() {
+  const double mechanical = kineticEnergy_ + strainEnergy_;
+  monitors_.kineticEnergy = kineticEnergy_;
+  monitors_.strainEnergy = strainEnergy_;
+  monitors_.largestUnbalancedForce = largestUnbalanced_;
+  monitors_.unbalancedRatio = meanContactForce_ > 0.0 ? largestUnbalanced_ / meanContactForce_
+                              : (largestUnbalanced_ > 0.0 ? 1.0 : 0.0);
+  // The energy supplied can return to zero (a bouncing block back at its start), where the
+  // discrete energies' O((w dt)^2) errors are not; so the excess is measured against the
+  // largest energy supplied so far.
+  largestSupplied_ = std::max({largestSupplied_, supplied_, energyFloor_});
+  const double excess = mechanical - supplied_;
+  monitors_.energyRatio = mechanical / largestSupplied_;
+  energy_.largestExcess = std::max(energy_.largestExcess, excess / largestSupplied_);
+  if (!(excess <= kEnergyExcessLimit * largestSupplied_)) {
+    std::ostringstream s;
+    s << "numerical instability at cycle " << model_.cycle << ", time " << model_.time << " s: the mechanical "
+      << "energy (kinetic " << kineticEnergy_ << " + strain " << strainEnergy_ << " J/m) "
+      << (std::isfinite(mechanical) ? "exceeds the energy supplied (" + std::to_string(supplied_) +
+                                          " J/m) by more than " + std::to_string(kEnergyExcessLimit) +
+                                          " times the largest energy supplied so far"
+                                    : "is not a number")
+      << ". The time step " << dt_ << " s is above the stability limit of the stiffest contact: lower "
+      << "solver.frac (now " << settings_.frac << "; 0.1 is the usual value), or check for a joint stiffness "
+      << "far above the others.";
+    throw InstabilityError(s.str());
+  }
+}
+
+void Cycle::recordHistories() {
+  for (std::size_t i = 0; i < historySpecs_.size(); ++i) {
+    const HistorySpec& h = historySpecs_[i];
+    if (model_.cycle % h.every != 0) continue;
+    histories_[i].t.push_back(model_.time);
+    histories_[i].value.push_back(sampleHistory(model_, h, monitors_));
+  }
+}
+
+bool Cycle::stopReached(std::string& reason) const {
+  const StopCriteria& s = settings_.stop;
+  if (s.cycles >= 0 && model_.cycle >= s.cycles) { reason = "cycles"; return true; }
+  // Half a step of slack so that a time that is a multiple of dt is reached, not overshot.
+  if (s.time >= 0 && model_.time >= s.time - 0.5 * dt_) { reason = "time"; return true; }
+  if (s.ratio > 0 && model_.cycle > 0 && monitors_.unbalancedRatio <= s.ratio) { reason = "ratio"; return true; }
+  return false;
+}
+
+void Cycle::printProgress(bool final) const {
+  std::fprintf(stderr, "\rcycle %lld  time %.6g s  ratio %.3e  contacts %zu%s", model_.cycle, model_.time,
+               monitors_.unbalancedRatio, model_.contacts.size(), final ? "\n" : "");
+  std::fflush(stderr);
+}
+
+RunReport Cycle::run() {
+  const auto start = Clock::now();
+  const bool progress = settings_.progress && isatty(STDERR_FILENO);
+  auto lastPrint = start;
+  if (!historySpecs_.empty()) recordHistories();
+  RunReport report;
+  try {
+    while (!stopReached(report.stopReason)) {
+      for (Stage& stage : stages_) {
+        if (settings_.profile) {
+          const auto t0 = Clock::now();
+          stage.step();
+          stage.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+        } else {
+          stage.step();
+        }
+      }
+      if (progress && (model_.cycle & 255) == 0) {
+        const auto now = Clock::now();
+        if (now - lastPrint > std::chrono::milliseconds(250)) {
+          printProgress(false);
+          lastPrint = now;
+        }
+      }
+    }
+  } catch (const Error& e) {
+    report.stopReason = "error";
+    report.error = e.what();
+    report.errorCode = static_cast<int>(e.code());
+  }
+  if (progress) printProgress(true);
+  report.cycles = model_.cycle;
+  report.time = model_.time;
+  report.dt = dt_;
+  for (const Stage& s : stages_) {
+    report.stages.push_back(s.name);
+    report.profile.push_back({s.name, s.seconds});
+  }
+  report.histories = histories_;
+  energy_.kinetic = kineticEnergy_;
+  energy_.strain = strainEnergy_;
+  energy_.slipDissipation = 0.0;
+  for (const Contact& c : model_.contacts) energy_.slipDissipation += c.slipDissipation;
+  report.energy = energy_;
+  report.lastMonitors = monitors_;
+  report.detectionScans = detection_.scans();
+  report.wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return report;
+}
+
+}  // namespace vdec

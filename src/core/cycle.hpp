@@ -1,0 +1,98 @@
+#pragma once
+// The time loop: one step is a fixed sequence of named stages chosen once from the scene.
+// A stage is one indirect call per step; inside it, loops run over plain arrays.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "contact/contact_detection.hpp"
+#include "core/history.hpp"
+#include "core/model.hpp"
+
+namespace vdec {
+
+struct StopCriteria {
+  long long cycles = -1;  // < 0: not set
+  double time = -1.0;
+  double ratio = -1.0;
+};
+
+struct RunSettings {
+  double frac = 0.1;          // FRAC of 1.3-28
+  double massDamping = 0.0;   // alpha of 1.3-21, 1/s
+  StopCriteria stop;
+  bool profile = false;
+  bool progress = false;
+};
+
+struct EnergyReport {
+  double initial = 0.0;            // kinetic energy at the start
+  double externalWork = 0.0;       // by gravity, applied loads and driven blocks
+  double kinetic = 0.0;            // at the end
+  double strain = 0.0;             // at the end
+  double slipDissipation = 0.0;    // at the end, summed over existing contacts
+  double largestExcess = 0.0;      // max over the run of (kinetic + strain - supplied) / largest supplied
+};
+
+struct StageTiming {
+  std::string name;
+  double seconds = 0.0;
+};
+
+struct RunReport {
+  long long cycles = 0;
+  double time = 0.0;
+  double dt = 0.0;
+  std::string stopReason;
+  std::vector<std::string> stages;
+  std::vector<StageTiming> profile;
+  std::vector<HistorySeries> histories;
+  EnergyReport energy;
+  Monitors lastMonitors;
+  int detectionScans = 0;
+  double wallSeconds = 0.0;
+  // Set when a numerical error stopped the run; the report then holds the state up to it.
+  std::string error;
+  int errorCode = 0;
+};
+
+class Cycle {
+ public:
+  Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histories);
+  // Runs to a stop criterion. Numerical trouble (instability, overlap) ends the run early with
+  // report.error and report.errorCode set, so that the histories up to it can still be written.
+  RunReport run();
+  double timeStep() const { return dt_; }
+
+ private:
+  struct Stage {
+    std::string name;
+    std::function<void()> step;
+    double seconds = 0.0;
+  };
+  void buildStages();
+  void checkEnergy();
+  void recordHistories();
+  bool stopReached(std::string& reason) const;
+  void printProgress(bool final) const;
+
+  Model& model_;
+  RunSettings settings_;
+  std::vector<HistorySpec> historySpecs_;
+  std::vector<HistorySeries> histories_;
+  std::vector<Stage> stages_;
+  ContactDetection detection_;
+  double dt_ = 0.0;
+  double largestStepDisplacement_ = 0.0;
+  double supplied_ = 0.0;       // initial energy + external work so far
+  double largestSupplied_ = 0.0;
+  double energyFloor_ = 0.0;    // below this the balance is round-off
+  double strainEnergy_ = 0.0;
+  double kineticEnergy_ = 0.0;
+  double meanContactForce_ = 0.0;
+  double largestUnbalanced_ = 0.0;
+  EnergyReport energy_;
+  Monitors monitors_;
+};
+
+}  // namespace vdec

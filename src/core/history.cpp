@@ -1,0 +1,90 @@
+#include "core/history.hpp"
+
+namespace vdec {
+
+const std::vector<HistoryQuantityInfo>& historyQuantities() {
+  using Q = HistoryQuantity;
+  using S = HistorySubject;
+  static const std::vector<HistoryQuantityInfo> table = {
+      {Q::BlockX, "block.x", S::Block, "m", "centroid x"},
+      {Q::BlockY, "block.y", S::Block, "m", "centroid y"},
+      {Q::BlockDisplacementX, "block.displacement_x", S::Block, "m", "centroid x minus its initial value"},
+      {Q::BlockDisplacementY, "block.displacement_y", S::Block, "m", "centroid y minus its initial value"},
+      {Q::BlockVelocityX, "block.velocity_x", S::Block, "m/s", "centroid velocity x (at the half step)"},
+      {Q::BlockVelocityY, "block.velocity_y", S::Block, "m/s", "centroid velocity y (at the half step)"},
+      {Q::BlockRotation, "block.rotation", S::Block, "rad", "rotation, counter-clockwise positive"},
+      {Q::BlockAngularVelocity, "block.angular_velocity", S::Block, "rad/s", "angular velocity"},
+      {Q::JointNormalForce, "joint.normal_force", S::Joint, "N/m", "sum of contact normal forces, compression positive"},
+      {Q::JointShearForce, "joint.shear_force", S::Joint, "N/m", "sum of contact shear forces"},
+      {Q::JointNormalStress, "joint.normal_stress", S::Joint, "Pa", "sum of normal forces / sum of contact lengths"},
+      {Q::JointShearStress, "joint.shear_stress", S::Joint, "Pa", "sum of shear forces / sum of contact lengths"},
+      {Q::JointNormalDisplacement, "joint.normal_displacement", S::Joint, "m", "mean accumulated normal displacement, closing positive"},
+      {Q::JointShearDisplacement, "joint.shear_displacement", S::Joint, "m", "mean accumulated shear displacement"},
+      {Q::JointLength, "joint.length", S::Joint, "m", "sum of contact lengths"},
+      {Q::JointContacts, "joint.contacts", S::Joint, "-", "number of contacts"},
+      {Q::UnbalancedRatio, "model.unbalanced_ratio", S::Model, "-", "largest unbalanced force / mean contact force"},
+      {Q::LargestUnbalancedForce, "model.largest_unbalanced_force", S::Model, "N/m", "largest unbalanced force of a free block"},
+      {Q::KineticEnergy, "model.kinetic_energy", S::Model, "J/m", "kinetic energy (time-centred)"},
+      {Q::StrainEnergy, "model.strain_energy", S::Model, "J/m", "elastic energy in the contacts"},
+      {Q::EnergyRatio, "model.energy_ratio", S::Model, "-", "(kinetic + strain energy) / largest energy supplied so far"},
+  };
+  return table;
+}
+
+std::optional<HistoryQuantityInfo> findHistoryQuantity(std::string_view name) {
+  for (const auto& info : historyQuantities())
+    if (info.name == name) return info;
+  return std::nullopt;
+}
+
+namespace {
+
+double jointMeasure(const Model& m, const HistorySpec& h) {
+  double normalForce = 0.0, shearForce = 0.0, length = 0.0, un = 0.0, us = 0.0;
+  int count = 0;
+  for (const Contact& c : m.contacts) {
+    const bool between = (c.blockA == h.block && c.blockB == h.otherBlock) ||
+                         (c.blockA == h.otherBlock && c.blockB == h.block);
+    if (!between) continue;
+    normalForce += c.normalForce;
+    shearForce += c.shearForce;
+    length += c.length;
+    un += c.normalDisplacement;
+    us += c.shearDisplacement;
+    ++count;
+  }
+  switch (h.quantity) {
+    case HistoryQuantity::JointNormalForce: return normalForce;
+    case HistoryQuantity::JointShearForce: return shearForce;
+    case HistoryQuantity::JointNormalStress: return length > 0 ? normalForce / length : 0.0;
+    case HistoryQuantity::JointShearStress: return length > 0 ? shearForce / length : 0.0;
+    case HistoryQuantity::JointNormalDisplacement: return count ? un / count : 0.0;
+    case HistoryQuantity::JointShearDisplacement: return count ? us / count : 0.0;
+    case HistoryQuantity::JointLength: return length;
+    default: return static_cast<double>(count);
+  }
+}
+
+}  // namespace
+
+double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) {
+  const Blocks& b = m.blocks;
+  switch (h.quantity) {
+    case HistoryQuantity::BlockX: return b.centroid[h.block].x;
+    case HistoryQuantity::BlockY: return b.centroid[h.block].y;
+    case HistoryQuantity::BlockDisplacementX: return b.centroid[h.block].x - b.initialCentroid[h.block].x;
+    case HistoryQuantity::BlockDisplacementY: return b.centroid[h.block].y - b.initialCentroid[h.block].y;
+    case HistoryQuantity::BlockVelocityX: return b.velocity[h.block].x;
+    case HistoryQuantity::BlockVelocityY: return b.velocity[h.block].y;
+    case HistoryQuantity::BlockRotation: return b.rotation[h.block];
+    case HistoryQuantity::BlockAngularVelocity: return b.angularVelocity[h.block];
+    case HistoryQuantity::UnbalancedRatio: return mon.unbalancedRatio;
+    case HistoryQuantity::LargestUnbalancedForce: return mon.largestUnbalancedForce;
+    case HistoryQuantity::KineticEnergy: return mon.kineticEnergy;
+    case HistoryQuantity::StrainEnergy: return mon.strainEnergy;
+    case HistoryQuantity::EnergyRatio: return mon.energyRatio;
+    default: return jointMeasure(m, h);
+  }
+}
+
+}  // namespace vdec

@@ -1,0 +1,58 @@
+#pragma once
+// Histories: named time series of a block, a joint (all contacts between two blocks) or the
+// whole model, sampled every `every` cycles.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/model.hpp"
+
+namespace vdec {
+
+enum class HistoryQuantity {
+  BlockX, BlockY, BlockDisplacementX, BlockDisplacementY, BlockVelocityX, BlockVelocityY,
+  BlockRotation, BlockAngularVelocity,
+  JointNormalForce, JointShearForce, JointNormalStress, JointShearStress,
+  JointNormalDisplacement, JointShearDisplacement, JointLength, JointContacts,
+  UnbalancedRatio, LargestUnbalancedForce, KineticEnergy, StrainEnergy, EnergyRatio,
+};
+
+enum class HistorySubject { Block, Joint, Model };
+
+struct HistoryQuantityInfo {
+  HistoryQuantity quantity;
+  std::string_view name;  // as written in the scene, e.g. "block.x"
+  HistorySubject subject;
+  std::string_view unit;
+  std::string_view meaning;
+};
+
+const std::vector<HistoryQuantityInfo>& historyQuantities();
+std::optional<HistoryQuantityInfo> findHistoryQuantity(std::string_view name);
+
+struct HistorySpec {
+  std::string name;
+  HistoryQuantity quantity = HistoryQuantity::BlockX;
+  int block = -1;       // Block subject, or the first block of a joint
+  int otherBlock = -1;  // Joint subject
+  int every = 1;
+};
+
+// Model-wide measures of the current step, computed by the cycle.
+struct Monitors {
+  double unbalancedRatio = 0.0;
+  double largestUnbalancedForce = 0.0;
+  double kineticEnergy = 0.0;
+  double strainEnergy = 0.0;
+  double energyRatio = 0.0;  // mechanical energy / energy supplied
+};
+
+struct HistorySeries {
+  std::vector<double> t;
+  std::vector<double> value;
+};
+
+double sampleHistory(const Model& model, const HistorySpec& spec, const Monitors& monitors);
+
+}  // namespace vdec

@@ -1,0 +1,121 @@
+#pragma once
+// The state of a vdec model: plain arrays indexed by small integer ids. Everything a stage
+// reads or writes lives here; stages own no state of their own beyond scratch buffers.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/vec2.hpp"
+
+namespace vdec {
+
+struct BlockMaterial {
+  std::string name;
+  double density = 0.0;  // kg/m^3 (unit thickness: mass per metre out of plane)
+};
+
+// NUREG/CR-5429 1.4.7: model #1 (point contact, forces), #2 (Coulomb slip), #5 (Coulomb slip
+// with loss of cohesion and tensile strength at first failure).
+enum class JointLaw : std::uint8_t { PointContact, CoulombSlip, CoulombFracture };
+
+struct JointMaterial {
+  std::string name;
+  JointLaw law = JointLaw::CoulombSlip;
+  double kn = 0.0;           // Pa/m (joint laws) or N/m (point contact)
+  double ks = 0.0;
+  double tanFriction = 0.0;  // tan(phi)
+  double cohesion = 0.0;     // Pa (joint laws only)
+  double tension = 0.0;      // Pa, tensile strength T0 (joint laws only)
+  double tanDilation = 0.0;  // tan(psi)
+};
+
+// Degrees of freedom of a rigid block that are driven (velocity prescribed, zero when fixed)
+// rather than integrated from the forces.
+enum DrivenDof : std::uint8_t { DriveX = 1, DriveY = 2, DriveRotation = 4, DriveAll = 7 };
+
+// Rigid blocks, structure of arrays. Vertices of block b are firstVertex[b] ..
+// firstVertex[b] + vertexCount[b] - 1 in the vertex arrays, counter-clockwise.
+struct Blocks {
+  std::vector<std::string> name;
+  std::vector<int> material;
+  std::vector<int> firstVertex;
+  std::vector<int> vertexCount;
+  std::vector<double> mass;
+  std::vector<double> inertia;        // about the centroid
+  std::vector<std::uint8_t> driven;   // DrivenDof bits
+  std::vector<double> boundingRadius; // largest centroid-to-vertex distance
+  std::vector<Vec2> initialCentroid;
+  std::vector<Vec2> centroid;
+  std::vector<double> rotation;       // radians, counter-clockwise, from the input position
+  std::vector<Vec2> velocity;         // at t - dt/2 before the motion stage, t + dt/2 after
+  std::vector<double> angularVelocity;
+  std::vector<Vec2> force;            // contact force sum of the current step (gravity excluded)
+  std::vector<double> moment;
+  std::vector<Vec2> appliedForce;     // constant user loads
+  std::vector<double> appliedMoment;
+
+  int size() const { return static_cast<int>(name.size()); }
+  bool movesFreely(int b) const { return driven[b] != DriveAll; }
+};
+
+// Boundary vertices of all blocks. For a rigid block they move with its rigid motion;
+// localPosition is relative to the centroid at zero rotation.
+struct Vertices {
+  std::vector<int> block;
+  std::vector<Vec2> localPosition;
+  std::vector<Vec2> position;
+  // Rounded corner (1.3.3.2, Fig. 1.3-2d): arc tangent to both edges at the rounding length d
+  // from the vertex; centre on the bisector, radius d tan(alpha/2).
+  std::vector<Vec2> localArcCentre;
+  std::vector<Vec2> arcCentre;
+  std::vector<double> arcRadius;
+
+  int size() const { return static_cast<int>(block.size()); }
+};
+
+enum class FeatureKind : std::uint8_t { Edge, Corner };
+
+// One corner of block A touching block B. Forces are stored (NUREG/CR-5429 1.4-136 is in
+// force form) so that a change of contact length changes stiffness, never the force itself.
+struct Contact {
+  int corner = -1;          // vertex of block A
+  int blockA = -1;
+  int blockB = -1;
+  int feature = -1;         // vertex id on B: edge (feature, next) or corner `feature`
+  FeatureKind featureKind = FeatureKind::Edge;
+  int joint = -1;           // joint material
+  Vec2 normal;              // unit, from B towards A
+  Vec2 point;               // where the force acts
+  double overlap = 0.0;     // geometric, positive when the rounded shapes interpenetrate
+  double length = 0.0;      // contact length L (1.3-2); 1 for the point-contact law's weight
+  double elasticNormal = 0.0;  // normal force the elastic spring alone would carry (can be < 0)
+  double normalForce = 0.0;    // Fn, compression positive
+  double shearForce = 0.0;     // Fs, along tangent t = (n.y, -n.x)
+  double normalDisplacement = 0.0;  // accumulated, closing positive
+  double shearDisplacement = 0.0;   // accumulated, along t
+  double slipDissipation = 0.0;
+  bool open = false;        // separated, or broken in tension and not closed again
+  bool intact = true;       // model #5: cohesion and tensile strength not yet destroyed
+  bool slipping = false;
+};
+
+struct Model {
+  std::vector<BlockMaterial> blockMaterials;
+  std::vector<JointMaterial> jointMaterials;
+  Blocks blocks;
+  Vertices vertices;
+  std::vector<Contact> contacts;
+  // Joint material per unordered block pair where the scene assigns one; else defaultJoint.
+  std::vector<std::pair<std::pair<int, int>, int>> jointAssignments;
+  int defaultJoint = -1;
+
+  Vec2 gravity;
+  double roundingLength = 0.0;     // d
+  double contactTolerance = 0.0;   // gap below which a contact exists
+  double time = 0.0;
+  long long cycle = 0;
+
+  int jointMaterialFor(int a, int b) const;
+};
+
+}  // namespace vdec

@@ -1,0 +1,104 @@
+#include "io/results_writer.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/errors.hpp"
+#include "io/build_info.hpp"
+
+namespace vdec {
+
+namespace {
+
+const char* jointLawName(JointLaw law) {
+  switch (law) {
+    case JointLaw::PointContact: return "point-contact";
+    case JointLaw::CoulombSlip: return "coulomb-slip";
+    case JointLaw::CoulombFracture: return "coulomb-fracture";
+  }
+  return "?";
+}
+
+}  // namespace
+
+void writeResults(const std::string& dir, const Scene& scene, const RunReport& report, double setupSeconds) {
+  using nlohmann::json;
+  const Model& m = scene.model;
+  json j;
+  j["schema"] = "vdec.results/1";
+  j["software"] = {{"name", "vdec"},
+                   {"version", build::version},
+                   {"git_commit", build::gitCommit},
+                   {"build_type", build::buildType},
+                   {"compiler", build::compiler}};
+  j["scene"] = {{"path", scene.path}, {"sha256", scene.sha256}, {"overrides", scene.overrides}, {"title", scene.title}};
+  json profile = json::object();
+  for (const StageTiming& s : report.profile) profile[s.name] = s.seconds;
+  j["run"] = {{"cycles", report.cycles},
+              {"time", report.time},
+              {"dt", report.dt},
+              {"wall_seconds", report.wallSeconds},
+              {"setup_seconds", setupSeconds},
+              {"stages", report.stages},
+              {"stop_reason", report.stopReason},
+              {"error", report.error},
+              {"exit_code", report.errorCode},
+              {"contact_detection_scans", report.detectionScans},
+              {"unbalanced_ratio", report.lastMonitors.unbalancedRatio},
+              {"stage_seconds", profile}};
+  j["energy"] = {{"initial", report.energy.initial},
+                 {"external_work", report.energy.externalWork},
+                 {"kinetic", report.energy.kinetic},
+                 {"strain", report.energy.strain},
+                 {"slip_dissipation", report.energy.slipDissipation},
+                 {"largest_excess", report.energy.largestExcess}};
+  json histories = json::object();
+  // The specs are in the scene; the series are in the report, in the same order.
+  for (std::size_t i = 0; i < scene.histories.size() && i < report.histories.size(); ++i)
+    histories[scene.histories[i].name] = {{"t", report.histories[i].t}, {"value", report.histories[i].value}};
+  j["histories"] = histories;
+  json blocks = json::array();
+  for (int b = 0; b < m.blocks.size(); ++b) {
+    const Blocks& bl = m.blocks;
+    blocks.push_back({{"name", bl.name[b]},
+                      {"mass", bl.mass[b]},
+                      {"inertia", bl.inertia[b]},
+                      {"centroid", {bl.centroid[b].x, bl.centroid[b].y}},
+                      {"rotation", bl.rotation[b]},
+                      {"velocity", {bl.velocity[b].x, bl.velocity[b].y}},
+                      {"angular_velocity", bl.angularVelocity[b]}});
+  }
+  j["blocks"] = blocks;
+  json contacts = json::array();
+  for (const Contact& c : m.contacts) {
+    contacts.push_back({{"block_a", m.blocks.name[c.blockA]},
+                        {"corner", c.corner - m.blocks.firstVertex[c.blockA]},
+                        {"block_b", m.blocks.name[c.blockB]},
+                        {"kind", c.featureKind == FeatureKind::Edge ? "corner-edge" : "corner-corner"},
+                        {"joint", m.jointMaterials[c.joint].name},
+                        {"law", jointLawName(m.jointMaterials[c.joint].law)},
+                        {"point", {c.point.x, c.point.y}},
+                        {"normal", {c.normal.x, c.normal.y}},
+                        {"length", c.length},
+                        {"overlap", c.overlap},
+                        {"normal_force", c.normalForce},
+                        {"shear_force", c.shearForce},
+                        {"normal_displacement", c.normalDisplacement},
+                        {"shear_displacement", c.shearDisplacement},
+                        {"open", c.open},
+                        {"slipping", c.slipping},
+                        {"intact", c.intact}});
+  }
+  j["contacts"] = contacts;
+
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  const std::string path = (std::filesystem::path(dir) / "results.json").string();
+  std::ofstream out(path);
+  if (ec || !out) throw OutputError(path + ": cannot write results (" + (ec ? ec.message() : "open failed") + ")");
+  out << j.dump(1) << "\n";
+  if (!out) throw OutputError(path + ": write failed");
+}
+
+}  // namespace vdec

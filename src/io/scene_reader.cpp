@@ -1,0 +1,487 @@
+#include "io/scene_reader.hpp"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "contact/contact_geometry.hpp"
+#include "core/errors.hpp"
+#include "geometry/block_cutting.hpp"
+#include "geometry/polygon.hpp"
+#include "io/sha256.hpp"
+
+namespace vdec {
+
+namespace {
+
+double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
+
+// Reads one TOML table, remembering which keys were used so that unknown ones are errors.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string prefix, const std::string& file)
+      : table_(table), prefix_(std::move(prefix)), file_(file) {}
+
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const {
+    const toml::node* node = table_.get(key);
+    const auto line = node ? node->source().begin.line : table_.source().begin.line;
+    std::ostringstream s;
+    s << file_ << ":" << line << ": key '" << qualified(key) << "': " << message;
+    throw SceneError(s.str());
+  }
+  std::string qualified(std::string_view key) const {
+    return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
+  }
+  bool has(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.get(key) != nullptr;
+  }
+  const toml::node* node(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.get(key);
+  }
+
+  double number(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    if (!n->is_number()) fail(key, "must be a number");
+    const double v = *n->value<double>();
+    if (!std::isfinite(v)) fail(key, "must be finite");
+    return v;
+  }
+  double number(std::string_view key, double fallback) { return has(key) ? number(key) : fallback; }
+  double positive(std::string_view key) {
+    const double v = number(key);
+    if (!(v > 0)) fail(key, "must be > 0, got " + std::to_string(v));
+    return v;
+  }
+  double nonNegative(std::string_view key, double fallback) {
+    const double v = number(key, fallback);
+    if (v < 0) fail(key, "must be >= 0, got " + std::to_string(v));
+    return v;
+  }
+  double angleDegrees(std::string_view key, double fallback) {
+    const double v = number(key, fallback);
+    if (v < 0 || v >= 90) fail(key, "must be in [0, 90) degrees, got " + std::to_string(v));
+    return v;
+  }
+  long long integer(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    if (!n->is_integer()) fail(key, "must be an integer");
+    return *n->value<long long>();
+  }
+  std::string string(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    if (!n->is_string()) fail(key, "must be a string");
+    return *n->value<std::string>();
+  }
+  std::string string(std::string_view key, const std::string& fallback) { return has(key) ? string(key) : fallback; }
+  bool boolean(std::string_view key, bool fallback) {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    if (!n->is_boolean()) fail(key, "must be true or false");
+    return *n->value<bool>();
+  }
+  Vec2 vec2(std::string_view key, Vec2 fallback) { return has(key) ? vec2(key) : fallback; }
+  Vec2 vec2(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 2 || !(*a)[0].is_number() || !(*a)[1].is_number())
+      fail(key, "must be an array of two numbers, e.g. [0.0, 1.0]");
+    return {*(*a)[0].value<double>(), *(*a)[1].value<double>()};
+  }
+  Polygon polygon(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    const toml::array* a = n->as_array();
+    if (!a) fail(key, "must be an array of [x, y] points");
+    Polygon p;
+    for (const toml::node& point : *a) {
+      const toml::array* xy = point.as_array();
+      if (!xy || xy->size() != 2 || !(*xy)[0].is_number() || !(*xy)[1].is_number())
+        fail(key, "must be an array of [x, y] points; point " + std::to_string(p.size()) + " is not");
+      p.push_back({*(*xy)[0].value<double>(), *(*xy)[1].value<double>()});
+    }
+    return p;
+  }
+  std::vector<std::string> strings(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    const toml::array* a = n->as_array();
+    if (!a) fail(key, "must be an array of strings");
+    std::vector<std::string> out;
+    for (const toml::node& s : *a) {
+      if (!s.is_string()) fail(key, "must be an array of strings");
+      out.push_back(*s.value<std::string>());
+    }
+    return out;
+  }
+  // Array of tables, e.g. [[block]]; absent means empty.
+  std::vector<std::pair<const toml::table*, std::string>> tables(std::string_view key) {
+    std::vector<std::pair<const toml::table*, std::string>> out;
+    const toml::node* n = node(key);
+    if (!n) return out;
+    const toml::array* a = n->as_array();
+    if (!a || !a->is_array_of_tables()) fail(key, "must be an array of tables, written [[" + qualified(key) + "]]");
+    for (std::size_t i = 0; i < a->size(); ++i)
+      out.emplace_back((*a)[i].as_table(), qualified(key) + "[" + std::to_string(i) + "]");
+    return out;
+  }
+  std::optional<TableReader> subtable(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (!n->is_table()) fail(key, "must be a table, written [" + qualified(key) + "]");
+    return TableReader(*n->as_table(), qualified(key), file_);
+  }
+  // Unknown keys are errors: a misspelt key must never be silently ignored.
+  void finish() const {
+    for (auto&& [key, value] : table_)
+      if (!used_.count(std::string(key.str()))) {
+        std::ostringstream s;
+        s << file_ << ":" << value.source().begin.line << ": key '" << qualified(key.str()) << "': unknown key";
+        throw SceneError(s.str());
+      }
+  }
+  const toml::table& table() const { return table_; }
+  const std::string& file() const { return file_; }
+
+ private:
+  const toml::table& table_;
+  std::string prefix_;
+  std::string file_;
+  std::set<std::string> used_;
+};
+
+void applyOverride(toml::table& root, const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw SceneError("--set '" + text + "': expected key.path=value, e.g. solver.frac=0.2");
+  const std::string path = text.substr(0, eq);
+  toml::table parsed;
+  try {
+    parsed = toml::parse("value = " + text.substr(eq + 1));
+  } catch (const toml::parse_error& e) {
+    throw SceneError("--set '" + text + "': the value is not valid TOML: " + std::string(e.description()));
+  }
+  toml::table* table = &root;
+  std::size_t start = 0;
+  for (;;) {
+    const auto dot = path.find('.', start);
+    const std::string part = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (part.empty()) throw SceneError("--set '" + text + "': empty key in '" + path + "'");
+    if (dot == std::string::npos) {
+      table->insert_or_assign(part, *parsed.get("value"));
+      return;
+    }
+    toml::node* next = table->get(part);
+    if (!next) {
+      table->insert(part, toml::table{});
+      next = table->get(part);
+    }
+    if (!next->is_table())
+      throw SceneError("--set '" + text + "': '" + part + "' is not a table; only keys of tables such as "
+                       "solver.frac can be overridden");
+    table = next->as_table();
+    start = dot + 1;
+  }
+}
+
+struct BlockInput {
+  std::string name;
+  int material = -1;
+  Polygon polygon;
+  std::uint8_t driven = 0;
+  Vec2 velocity, force;
+  double angularVelocity = 0.0, moment = 0.0;
+  std::string where;  // for geometry errors
+};
+
+void addBlock(Model& m, const BlockInput& in) {
+  const double area = signedArea(in.polygon);
+  const Vec2 c = centroid(in.polygon);
+  const double density = m.blockMaterials[in.material].density;
+  Blocks& b = m.blocks;
+  b.name.push_back(in.name);
+  b.material.push_back(in.material);
+  b.firstVertex.push_back(m.vertices.size());
+  b.vertexCount.push_back(static_cast<int>(in.polygon.size()));
+  b.mass.push_back(density * area);
+  b.inertia.push_back(density * polarSecondMoment(in.polygon));
+  b.driven.push_back(in.driven);
+  double radius = 0.0;
+  for (const Vec2& p : in.polygon) radius = std::max(radius, norm(p - c));
+  b.boundingRadius.push_back(radius);
+  b.initialCentroid.push_back(c);
+  b.centroid.push_back(c);
+  b.rotation.push_back(0.0);
+  b.velocity.push_back(in.velocity);
+  b.angularVelocity.push_back(in.angularVelocity);
+  b.force.push_back({});
+  b.moment.push_back(0.0);
+  b.appliedForce.push_back(in.force);
+  b.appliedMoment.push_back(in.moment);
+  const int block = b.size() - 1;
+  for (const Vec2& p : in.polygon) {
+    m.vertices.block.push_back(block);
+    m.vertices.localPosition.push_back(p - c);
+    m.vertices.position.push_back(p);
+  }
+}
+
+}  // namespace
+
+Scene readScene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) throw SceneError(path + ": cannot open the scene file");
+  std::stringstream buffer;
+  buffer << stream.rdbuf();
+  const std::string bytes = buffer.str();
+
+  Scene scene;
+  scene.path = path;
+  scene.sha256 = sha256Hex(bytes);
+  scene.overrides = overrides;
+  toml::table root;
+  try {
+    root = toml::parse(bytes, path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream s;
+    s << path << ":" << e.source().begin.line << ": " << e.description();
+    throw SceneError(s.str());
+  }
+  for (const std::string& o : overrides) applyOverride(root, o);
+
+  TableReader top(root, "", path);
+  Model& m = scene.model;
+  scene.title = top.string("title", "");
+
+  // [model]
+  {
+    auto t = top.subtable("model");
+    if (!t) top.fail("model", "is required: the [model] table sets at least the rounding length");
+    m.gravity = t->vec2("gravity", {0.0, 0.0});
+    m.roundingLength = t->positive("rounding");
+    m.contactTolerance = t->has("contact_tolerance") ? t->positive("contact_tolerance") : m.roundingLength;
+    std::string defaultJoint = t->string("default_joint", "");
+    // materials are read below; resolve the default afterwards
+    for (auto [table, prefix] : top.tables("block_material")) {
+      TableReader r(*table, prefix, path);
+      BlockMaterial mat{r.string("name"), r.positive("density")};
+      for (const auto& other : m.blockMaterials)
+        if (other.name == mat.name) r.fail("name", "block material '" + mat.name + "' is defined twice");
+      m.blockMaterials.push_back(mat);
+      r.finish();
+    }
+    for (auto [table, prefix] : top.tables("joint_material")) {
+      TableReader r(*table, prefix, path);
+      JointMaterial j;
+      j.name = r.string("name");
+      for (const auto& other : m.jointMaterials)
+        if (other.name == j.name) r.fail("name", "joint material '" + j.name + "' is defined twice");
+      const std::string law = r.string("law", "coulomb-slip");
+      if (law == "coulomb-slip") j.law = JointLaw::CoulombSlip;
+      else if (law == "coulomb-fracture") j.law = JointLaw::CoulombFracture;
+      else if (law == "point-contact") j.law = JointLaw::PointContact;
+      else r.fail("law", "unknown joint law '" + law + "'; use coulomb-slip, coulomb-fracture or point-contact");
+      j.kn = r.positive("kn");
+      j.ks = r.positive("ks");
+      const double friction = r.angleDegrees("friction", 0.0);
+      const double dilation = r.angleDegrees("dilation", 0.0);
+      j.tanFriction = std::tan(radians(friction));
+      j.tanDilation = std::tan(radians(dilation));
+      j.cohesion = r.nonNegative("cohesion", 0.0);
+      j.tension = r.nonNegative("tension", 0.0);
+      if (j.law == JointLaw::PointContact && (j.cohesion > 0 || j.tension > 0))
+        r.fail(j.cohesion > 0 ? "cohesion" : "tension", "the point-contact law has no cohesion or tensile strength");
+      m.jointMaterials.push_back(j);
+      r.finish();
+    }
+    if (m.jointMaterials.empty()) top.fail("joint_material", "at least one [[joint_material]] is required");
+    if (defaultJoint.empty()) {
+      if (m.jointMaterials.size() > 1)
+        t->fail("default_joint", "is required when more than one joint material is defined");
+      m.defaultJoint = 0;
+    } else {
+      for (std::size_t i = 0; i < m.jointMaterials.size(); ++i)
+        if (m.jointMaterials[i].name == defaultJoint) m.defaultJoint = static_cast<int>(i);
+      if (m.defaultJoint < 0) t->fail("default_joint", "no joint material named '" + defaultJoint + "'");
+    }
+    t->finish();
+  }
+  auto materialIndex = [&](TableReader& r) {
+    const std::string name = r.string("material");
+    for (std::size_t i = 0; i < m.blockMaterials.size(); ++i)
+      if (m.blockMaterials[i].name == name) return static_cast<int>(i);
+    r.fail("material", "no block material named '" + name + "'");
+  };
+
+  // [solver] and [stop]
+  if (auto t = top.subtable("solver")) {
+    scene.settings.frac = t->number("frac", 0.1);
+    if (!(scene.settings.frac > 0 && scene.settings.frac <= 10))
+      t->fail("frac", "must be in (0, 10], got " + std::to_string(scene.settings.frac));
+    scene.settings.massDamping = t->nonNegative("mass_damping", 0.0);
+    t->finish();
+  }
+  {
+    auto t = top.subtable("stop");
+    if (!t) top.fail("stop", "is required: set [stop] cycles, time or ratio");
+    StopCriteria& s = scene.settings.stop;
+    if (t->has("cycles")) {
+      s.cycles = t->integer("cycles");
+      if (s.cycles <= 0) t->fail("cycles", "must be > 0");
+    }
+    if (t->has("time")) s.time = t->positive("time");
+    if (t->has("ratio")) s.ratio = t->positive("ratio");
+    if (s.cycles < 0 && s.time < 0 && s.ratio < 0) t->fail("cycles", "set at least one of cycles, time or ratio");
+    t->finish();
+  }
+
+  // Blocks, explicit and cut from regions, in input order.
+  std::vector<BlockInput> inputs;
+  std::map<std::string, std::string> nameOrigin;
+  auto claimName = [&](TableReader& r, const std::string& name, const std::string& origin) {
+    auto [it, fresh] = nameOrigin.emplace(name, origin);
+    if (!fresh) r.fail("name", "block name '" + name + "' is already used by " + it->second);
+  };
+  for (auto [table, prefix] : top.tables("block")) {
+    TableReader r(*table, prefix, path);
+    BlockInput in;
+    in.name = r.string("name");
+    claimName(r, in.name, prefix);
+    in.material = materialIndex(r);
+    in.polygon = r.polygon("vertices");
+    if (r.has("fix")) {
+      for (const std::string& dof : r.strings("fix")) {
+        const std::uint8_t bit = dof == "x" ? DriveX : dof == "y" ? DriveY : dof == "rotation" ? DriveRotation : 0;
+        if (!bit) r.fail("fix", "unknown degree of freedom '" + dof + "'; use \"x\", \"y\" or \"rotation\"");
+        in.driven |= bit;
+      }
+    }
+    in.velocity = r.vec2("velocity", {0.0, 0.0});
+    in.angularVelocity = r.number("angular_velocity", 0.0);
+    in.force = r.vec2("force", {0.0, 0.0});
+    in.moment = r.number("moment", 0.0);
+    in.where = path + ": block '" + in.name + "' (" + prefix + ", line " + std::to_string(table->source().begin.line) + ")";
+    r.finish();
+    inputs.push_back(in);
+  }
+  for (auto [table, prefix] : top.tables("region")) {
+    TableReader r(*table, prefix, path);
+    RegionSpec region;
+    region.name = r.string("name");
+    const int material = materialIndex(r);
+    region.boundary = r.polygon("vertices");
+    validateBlockPolygon(region.boundary, 0.0, path + ": region '" + region.name + "' (" + prefix + ")");
+    if (r.has("seed")) {
+      const long long seed = r.integer("seed");
+      if (seed < 0) r.fail("seed", "must be >= 0");
+      region.seed = static_cast<std::uint64_t>(seed);
+    }
+    for (auto [ct, cp] : r.tables("crack")) {
+      TableReader c(*ct, cp, path);
+      region.cracks.push_back({c.vec2("from"), c.vec2("to")});
+      c.finish();
+    }
+    for (auto [jt, jp] : r.tables("joint_set")) {
+      TableReader j(*jt, jp, path);
+      JointSetSpec s;
+      s.angleDeg = j.number("angle");
+      s.angleVariationDeg = j.nonNegative("angle_variation", 0.0);
+      s.spacing = j.positive("spacing");
+      s.spacingVariation = j.nonNegative("spacing_variation", 0.0);
+      if (s.spacingVariation >= s.spacing) j.fail("spacing_variation", "must be less than spacing");
+      s.trace = j.has("trace") ? j.positive("trace") : 0.0;
+      s.traceVariation = j.nonNegative("trace_variation", 0.0);
+      if (s.traceVariation > 0 && s.traceVariation >= s.trace) j.fail("trace_variation", "must be less than trace (and trace must be set)");
+      s.gap = j.nonNegative("gap", 0.0);
+      s.gapVariation = j.nonNegative("gap_variation", 0.0);
+      if (s.gapVariation > s.gap) j.fail("gap_variation", "must not exceed gap");
+      if (s.gap > 0 && s.trace <= 0) j.fail("gap", "a gap needs a finite trace length");
+      s.origin = j.vec2("origin", {0.0, 0.0});
+      region.jointSets.push_back(s);
+      j.finish();
+    }
+    r.finish();
+    const std::vector<Polygon> pieces = cutRegion(region);
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      BlockInput in;
+      in.name = region.name + "." + std::to_string(k + 1);
+      claimName(r, in.name, prefix);
+      in.material = material;
+      in.polygon = pieces[k];
+      in.where = path + ": block '" + in.name + "' cut from region '" + region.name + "' (" + prefix + ")";
+      inputs.push_back(in);
+    }
+  }
+  if (inputs.empty()) top.fail("block", "the scene has no blocks: add [[block]] or [[region]]");
+  for (const BlockInput& in : inputs) {
+    validateBlockPolygon(in.polygon, m.roundingLength, in.where);
+    addBlock(m, in);
+  }
+  computeCornerArcs(m);
+  for (int b = 0; b < m.blocks.size(); ++b) placeBlockVertices(m, b);
+
+  auto blockIndex = [&](TableReader& r, std::string_view key, const std::string& name) {
+    for (int b = 0; b < m.blocks.size(); ++b)
+      if (m.blocks.name[b] == name) return b;
+    r.fail(key, "no block named '" + name + "'");
+  };
+  for (auto [table, prefix] : top.tables("joint_assignment")) {
+    TableReader r(*table, prefix, path);
+    const auto names = r.strings("blocks");
+    if (names.size() != 2) r.fail("blocks", "must name exactly two blocks");
+    const int a = blockIndex(r, "blocks", names[0]), b = blockIndex(r, "blocks", names[1]);
+    const std::string joint = r.string("joint");
+    int index = -1;
+    for (std::size_t i = 0; i < m.jointMaterials.size(); ++i)
+      if (m.jointMaterials[i].name == joint) index = static_cast<int>(i);
+    if (index < 0) r.fail("joint", "no joint material named '" + joint + "'");
+    m.jointAssignments.push_back({{std::min(a, b), std::max(a, b)}, index});
+    r.finish();
+  }
+
+  std::set<std::string> historyNames;
+  for (auto [table, prefix] : top.tables("history")) {
+    TableReader r(*table, prefix, path);
+    HistorySpec h;
+    h.name = r.string("name");
+    if (!historyNames.insert(h.name).second) r.fail("name", "history '" + h.name + "' is defined twice");
+    const std::string quantity = r.string("quantity");
+    const auto info = findHistoryQuantity(quantity);
+    if (!info) {
+      std::string known;
+      for (const auto& q : historyQuantities()) known += (known.empty() ? "" : ", ") + std::string(q.name);
+      r.fail("quantity", "unknown quantity '" + quantity + "'; known: " + known);
+    }
+    h.quantity = info->quantity;
+    if (info->subject == HistorySubject::Block) {
+      h.block = blockIndex(r, "block", r.string("block"));
+    } else if (info->subject == HistorySubject::Joint) {
+      const auto names = r.strings("blocks");
+      if (names.size() != 2) r.fail("blocks", "a joint history names exactly two blocks");
+      h.block = blockIndex(r, "blocks", names[0]);
+      h.otherBlock = blockIndex(r, "blocks", names[1]);
+      if (h.block == h.otherBlock) r.fail("blocks", "a joint is between two different blocks");
+    }
+    if (r.has("every")) {
+      const long long every = r.integer("every");
+      if (every < 1) r.fail("every", "must be >= 1");
+      h.every = static_cast<int>(every);
+    }
+    r.finish();
+    scene.histories.push_back(h);
+  }
+  top.finish();
+  return scene;
+}
+
+}  // namespace vdec

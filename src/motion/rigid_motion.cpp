@@ -1,0 +1,78 @@
+#include "motion/rigid_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "contact/contact_geometry.hpp"
+#include "core/errors.hpp"
+
+namespace vdec {
+
+MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha) {
+  MotionStepTotals totals;
+  Blocks& bl = m.blocks;
+  const double lose = 1.0 - 0.5 * alpha * dt, keep = 1.0 / (1.0 + 0.5 * alpha * dt);
+  // One degree of freedom: integrated by 1.3-21 when free, held at its velocity when driven.
+  // Returns the new velocity; accumulates kinetic energy, external work and unbalanced force.
+  auto advance = [&](bool driven, double v0, double inertia, double contact, double body, double& unbalanced) {
+    if (driven) {
+      // The driver does work on the rest of the model through the contact force it receives.
+      totals.externalWork -= contact * v0 * dt;
+      return v0;
+    }
+    const double load = contact + body;
+    unbalanced += load * load;
+    // 1.3-21: v(t+dt/2) = [v(t-dt/2)(1 - a dt/2) + (F/m + g) dt] / (1 + a dt/2)
+    const double v1 = keep * (lose * v0 + (dt / inertia) * load);
+    totals.kineticEnergy += 0.25 * inertia * (v0 * v0 + v1 * v1);
+    totals.externalWork += body * v1 * dt;
+    return v1;
+  };
+  for (int b = 0; b < bl.size(); ++b) {
+    const std::uint8_t driven = bl.driven[b];
+    const double mass = bl.mass[b];
+    const Vec2 body = mass * m.gravity + bl.appliedForce[b];
+    double unbalanced = 0.0;
+    const Vec2 v{advance(driven & DriveX, bl.velocity[b].x, mass, bl.force[b].x, body.x, unbalanced),
+                 advance(driven & DriveY, bl.velocity[b].y, mass, bl.force[b].y, body.y, unbalanced)};
+    double momentUnbalanced = 0.0;
+    const double w = advance(driven & DriveRotation, bl.angularVelocity[b], bl.inertia[b], bl.moment[b],
+                             bl.appliedMoment[b], momentUnbalanced);
+    totals.largestUnbalancedForce = std::max(totals.largestUnbalancedForce, std::sqrt(unbalanced));
+    bl.velocity[b] = v;
+    bl.angularVelocity[b] = w;
+    if (v.x != 0.0 || v.y != 0.0 || w != 0.0) {
+      bl.centroid[b] += dt * v;  // 1.3-15
+      bl.rotation[b] += dt * w;
+      placeBlockVertices(m, b);
+      totals.largestDisplacement =
+          std::max(totals.largestDisplacement, (norm(v) + std::abs(w) * bl.boundingRadius[b]) * dt);
+    }
+    bl.force[b] = {};
+    bl.moment[b] = 0.0;
+  }
+  return totals;
+}
+
+double rigidBlockTimeStep(const Model& m, double frac) {
+  double minMass = INFINITY;
+  for (int b = 0; b < m.blocks.size(); ++b)
+    if (m.blocks.movesFreely(b)) minMass = std::min(minMass, m.blocks.mass[b]);
+  double longestEdge = 0.0;
+  for (int b = 0; b < m.blocks.size(); ++b) {
+    const int first = m.blocks.firstVertex[b], n = m.blocks.vertexCount[b];
+    for (int k = 0; k < n; ++k)
+      longestEdge = std::max(longestEdge, norm(m.vertices.localPosition[first + (k + 1) % n] -
+                                               m.vertices.localPosition[first + k]));
+  }
+  double maxStiffness = 0.0;
+  for (const JointMaterial& j : m.jointMaterials) {
+    const double k = std::max(j.kn, j.ks);
+    maxStiffness = std::max(maxStiffness, j.law == JointLaw::PointContact ? k : k * longestEdge);
+  }
+  if (!std::isfinite(minMass)) throw SceneError("the scene has no free block: nothing can move");
+  if (maxStiffness <= 0.0) throw SceneError("the scene has no joint material: define at least one [[joint_material]]");
+  return frac * 2.0 * std::sqrt(minMass / maxStiffness);  // 1.3-28
+}
+
+}  // namespace vdec
