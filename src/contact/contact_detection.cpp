@@ -17,8 +17,6 @@ struct Key {
   bool operator==(const Key& o) const { return corner == o.corner && blockB == o.blockB; }
 };
 
-bool isFree(const Model& m, int b) { return m.blocks.movesFreely(b); }
-
 }  // namespace
 
 std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m) {
@@ -58,7 +56,6 @@ std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m
     for (int j = i + 1; j < n && minX_[order_[j]] <= maxX_[a]; ++j) {
       const int b = order_[j];
       if (minY_[b] > maxY_[a] || minY_[a] > maxY_[b]) continue;
-      if (!isFree(m, a) && !isFree(m, b)) continue;  // two driven blocks exchange nothing
       pairs.emplace_back(std::min(a, b), std::max(a, b));
     }
   }

@@ -55,9 +55,14 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha) {
 }
 
 double rigidBlockTimeStep(const Model& m, double frac) {
-  double minMass = INFINITY;
-  for (int b = 0; b < m.blocks.size(); ++b)
-    if (m.blocks.movesFreely(b)) minMass = std::min(minMass, m.blocks.mass[b]);
+  // The smallest block that moves under forces; when every block is driven (a kinematic test),
+  // the smallest block, so that driven loading still advances in small increments.
+  double minMass = INFINITY, minDrivenMass = INFINITY;
+  for (int b = 0; b < m.blocks.size(); ++b) {
+    double& smallest = m.blocks.movesFreely(b) ? minMass : minDrivenMass;
+    smallest = std::min(smallest, m.blocks.mass[b]);
+  }
+  if (!std::isfinite(minMass)) minMass = minDrivenMass;
   double longestEdge = 0.0;
   for (int b = 0; b < m.blocks.size(); ++b) {
     const int first = m.blocks.firstVertex[b], n = m.blocks.vertexCount[b];
@@ -70,7 +75,6 @@ double rigidBlockTimeStep(const Model& m, double frac) {
     const double k = std::max(j.kn, j.ks);
     maxStiffness = std::max(maxStiffness, j.law == JointLaw::PointContact ? k : k * longestEdge);
   }
-  if (!std::isfinite(minMass)) throw SceneError("the scene has no free block: nothing can move");
   if (maxStiffness <= 0.0) throw SceneError("the scene has no joint material: define at least one [[joint_material]]");
   return frac * 2.0 * std::sqrt(minMass / maxStiffness);  // 1.3-28
 }

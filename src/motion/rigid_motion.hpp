@@ -18,7 +18,7 @@ MotionStepTotals integrateRigidBlocks(Model& model, double dt, double massDampin
 
 // dt_b = FRAC * 2 sqrt(M_min / K_max), K_max = max(Kn, Ks) for point contacts and
 // max(kn, ks) * l_typ for joints, with l_typ the longest block edge (1.3-28, 1.3-29).
-// Throws SceneError when there is no free block to move.
+// M_min is over blocks with a free degree of freedom, or over all blocks when all are driven.
 double rigidBlockTimeStep(const Model& model, double frac);
 
 }  // namespace vdec

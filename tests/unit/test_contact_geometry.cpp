@@ -1,1 +1,151 @@
+#include <cmath>
+#include <numbers>
+
+#include "contact/contact_detection.hpp"
+#include "contact/contact_geometry.hpp"
+#include "core/errors.hpp"
 #include "requirements.hpp"
+#include "scene_fixture.hpp"
+
+using namespace vdec;
+using vdec::testing::blockOnBase;
+using vdec::testing::sceneFromText;
+
+namespace {
+// Moves block b rigidly to a centroid and rotation and updates its vertices.
+void place(Model& m, int b, Vec2 centroid, double rotation) {
+  m.blocks.centroid[b] = centroid;
+  m.blocks.rotation[b] = rotation;
+  placeBlockVertices(m, b);
+}
+}  // namespace
+
+TEST(ContactGeometry, RightAngleCornerArcHasRadiusDAndCentreOnTheBisector) {
+  VDEC_REQUIREMENTS("REQ-CONTACT-001");
+  Scene s = sceneFromText(blockOnBase(), "arc");
+  const Model& m = s.model;
+  const int corner = m.blocks.firstVertex[1];  // (-0.5, 0) of "top"
+  EXPECT_NEAR(m.vertices.arcRadius[corner], 0.01, 1e-15);
+  EXPECT_NEAR(m.vertices.arcCentre[corner].x, -0.49, 1e-12);
+  EXPECT_NEAR(m.vertices.arcCentre[corner].y, 0.01, 1e-12);
+}
+
+TEST(ContactGeometry, EdgeToEdgeContactIsTwoCornerEdgeContactsOfHalfLength) {
+  VDEC_REQUIREMENTS("REQ-CONTACT-002");
+  Scene s = sceneFromText(blockOnBase(), "edge-edge");
+  Model& m = s.model;
+  ContactDetection detection;
+  detection.initialise(m);
+  ASSERT_EQ(m.contacts.size(), 2u);
+  for (const Contact& c : m.contacts) {
+    EXPECT_EQ(c.blockA, 1);
+    EXPECT_EQ(c.featureKind, FeatureKind::Edge);
+    EXPECT_NEAR(c.normal.y, 1.0, 1e-15);
+    EXPECT_NEAR(c.overlap, 0.0, 1e-15);
+    const FeatureHit hit = nearestFeature(m, c.corner, c.blockB);
+    EXPECT_NEAR(contactLength(m, c.corner, hit), 0.5, 1e-12);
+  }
+}
+
+TEST(ContactGeometry, NormalVariesContinuouslyAsABlockRollsOverACorner) {
+  VDEC_REQUIREMENTS("REQ-CONTACT-001");
+  // The top block's corner slides around the base's corner at (1.5, 0): the contact passes from
+  // the base's top edge, over its rounded corner, to its side edge. The normal must turn
+  // smoothly: no jump larger than a small multiple of the step in position.
+  Scene s = sceneFromText(blockOnBase(), "continuity");
+  Model& m = s.model;
+  const int top = 1;
+  const int corner = m.blocks.firstVertex[top];  // bottom-left corner of "top"
+  const Vec2 arcOffset = m.vertices.localArcCentre[corner];
+  const double rA = m.vertices.arcRadius[corner], rB = m.vertices.arcRadius[m.blocks.firstVertex[0] + 2];
+  const Vec2 baseArc = m.vertices.arcCentre[m.blocks.firstVertex[0] + 2];
+  Vec2 previous{0.0, 0.0};
+  double largestTurn = 0.0;
+  const int steps = 2000;
+  for (int i = 0; i <= steps; ++i) {
+    // Move the corner's arc centre along a quarter circle around the base's corner arc, at a
+    // distance rA + rB (touching), from above the top edge to beside the side edge.
+    const double angle = std::numbers::pi / 2.0 * (1.2 - 1.4 * i / steps);
+    const Vec2 target = baseArc + (rA + rB) * Vec2{std::cos(angle), std::sin(angle)};
+    place(m, top, target - arcOffset, 0.0);
+    const FeatureHit hit = nearestFeature(m, corner, 0);
+    ASSERT_TRUE(std::isfinite(hit.overlap));
+    if (i > 0) largestTurn = std::max(largestTurn, std::acos(std::clamp(dot(hit.normal, previous), -1.0, 1.0)));
+    previous = hit.normal;
+  }
+  const double angularStep = std::numbers::pi / 2.0 * 1.4 / steps;
+  EXPECT_LE(largestTurn, 1.01 * angularStep);
+}
+
+TEST(ContactGeometry, CornerToCornerNormalJoinsTheArcCentres) {
+  VDEC_REQUIREMENTS("REQ-CONTACT-001");
+  Scene s = sceneFromText(blockOnBase(), "corner-corner");
+  Model& m = s.model;
+  const int corner = m.blocks.firstVertex[1];
+  const int baseCorner = m.blocks.firstVertex[0] + 2;  // (1.5, 0)
+  // Put the top block's bottom-left arc diagonally above-right of the base's top-right arc.
+  const Vec2 direction = normalized(Vec2{1.0, 1.0});
+  const double touch = m.vertices.arcRadius[corner] + m.vertices.arcRadius[baseCorner] - 1e-4;
+  const Vec2 target = m.vertices.arcCentre[baseCorner] + touch * direction;
+  place(m, 1, target - m.vertices.localArcCentre[corner], 0.0);
+  const FeatureHit hit = nearestFeature(m, corner, 0);
+  EXPECT_EQ(hit.kind, FeatureKind::Corner);
+  EXPECT_EQ(hit.feature, baseCorner);
+  EXPECT_NEAR(hit.normal.x, direction.x, 1e-12);
+  EXPECT_NEAR(hit.normal.y, direction.y, 1e-12);
+  EXPECT_NEAR(hit.overlap, 1e-4, 1e-12);
+  // Following from a neighbouring feature finds the same.
+  const FeatureHit followed = followFeature(m, corner, 0, m.blocks.firstVertex[0] + 1, FeatureKind::Edge);
+  EXPECT_EQ(followed.feature, baseCorner);
+  EXPECT_EQ(followed.kind, FeatureKind::Corner);
+}
+
+TEST(ContactGeometry, TwoTouchingCornersMakeOneContact) {
+  VDEC_REQUIREMENTS("REQ-CONTACT-002");
+  // Two equal blocks stacked exactly: corners meet corners; each pair must give one contact.
+  Scene s = sceneFromText(R"(
+[model]
+rounding = 0.01
+[stop]
+cycles = 1
+[[block_material]]
+name = "rock"
+density = 2500.0
+[[joint_material]]
+name = "j"
+kn = 1e8
+ks = 1e8
+[[block]]
+name = "lower"
+material = "rock"
+vertices = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+fix = ["x", "y", "rotation"]
+[[block]]
+name = "upper"
+material = "rock"
+vertices = [[0.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]]
+)", "stacked");
+  ContactDetection detection;
+  detection.initialise(s.model);
+  EXPECT_EQ(s.model.contacts.size(), 2u);
+  double length = 0.0;
+  for (const Contact& c : s.model.contacts) length += c.length > 0 ? c.length : contactLength(s.model, c.corner, {c.feature, c.featureKind, c.normal, c.point, c.overlap});
+  EXPECT_NEAR(length, 1.0, 1e-9);
+}
+
+TEST(ContactGeometry, OverlappingBlocksAtTheStartAreAnErrorNamingThem) {
+  VDEC_REQUIREMENTS("REQ-CONTACT-003");
+  std::string scene = blockOnBase();
+  const std::string from = "[[-0.5, 0.0], [0.5, 0.0], [0.5, 1.0], [-0.5, 1.0]]";
+  scene.replace(scene.find(from), from.size(), "[[-0.5, -0.003], [0.5, -0.003], [0.5, 1.0], [-0.5, 1.0]]");
+  Scene s = sceneFromText(scene, "overlap");
+  ContactDetection detection;
+  try {
+    detection.initialise(s.model);
+    FAIL() << "overlap not detected";
+  } catch (const GeometryError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'top'"), std::string::npos) << what;
+    EXPECT_NE(what.find("'base'"), std::string::npos) << what;
+  }
+}

@@ -1,1 +1,144 @@
+#include <regex>
+
+#include "core/errors.hpp"
 #include "requirements.hpp"
+#include "scene_fixture.hpp"
+
+using namespace vdec;
+using vdec::testing::blockOnBase;
+using vdec::testing::sceneFromText;
+using vdec::testing::writeSceneFile;
+
+namespace {
+// The message of the SceneError the text raises ("" if none).
+std::string sceneError(const std::string& text, const std::string& name) {
+  try {
+    sceneFromText(text, name);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+}  // namespace
+
+TEST(SceneReader, ReadsBlocksMaterialsAndDerivedProperties) {
+  VDEC_REQUIREMENTS("REQ-IO-001");
+  const Scene s = sceneFromText(blockOnBase(), "valid");
+  ASSERT_EQ(s.model.blocks.size(), 2);
+  EXPECT_EQ(s.model.blocks.name[1], "top");
+  EXPECT_DOUBLE_EQ(s.model.blocks.mass[1], 2500.0);
+  EXPECT_NEAR(s.model.blocks.inertia[1], 2500.0 * 2.0 / 12.0, 1e-9);
+  EXPECT_EQ(s.model.blocks.driven[0], DriveAll);
+  EXPECT_DOUBLE_EQ(s.model.gravity.y, -10.0);
+  EXPECT_EQ(s.sha256.size(), 64u);
+  EXPECT_NEAR(s.settings.frac, 0.1, 0.0);  // default
+}
+
+TEST(SceneReader, UnknownKeyIsAnErrorNamingFileLineAndKey) {
+  VDEC_REQUIREMENTS("REQ-IO-002");
+  const std::string text = replaced(blockOnBase(), "rounding = 0.01", "rounding = 0.01\nroundng = 0.02");
+  const std::string e = sceneError(text, "unknown-key");
+  EXPECT_TRUE(std::regex_search(e, std::regex(R"(unknown-key\.toml:5: key 'model\.roundng': unknown key)"))) << e;
+}
+
+TEST(SceneReader, WrongTypeIsAnErrorNamingTheKey) {
+  VDEC_REQUIREMENTS("REQ-IO-002");
+  const std::string e = sceneError(replaced(blockOnBase(), "density = 2500.0", "density = \"heavy\""), "wrong-type");
+  EXPECT_TRUE(std::regex_search(e, std::regex(R"(wrong-type\.toml:\d+: key 'block_material\[0\]\.density': must be a number)"))) << e;
+}
+
+TEST(SceneReader, MissingRequiredKeyIsAnError) {
+  VDEC_REQUIREMENTS("REQ-IO-002");
+  const std::string e = sceneError(replaced(blockOnBase(), "kn = 1e8\n", ""), "missing");
+  EXPECT_NE(e.find("key 'joint_material[0].kn': is required"), std::string::npos) << e;
+  const std::string noStop = sceneError(replaced(blockOnBase(), "[stop]\ncycles = 10\n", ""), "no-stop");
+  EXPECT_NE(noStop.find("'stop': is required"), std::string::npos) << noStop;
+}
+
+TEST(SceneReader, OutOfRangeValuesAreErrors) {
+  VDEC_REQUIREMENTS("REQ-IO-002");
+  EXPECT_NE(sceneError(replaced(blockOnBase(), "friction = 30.0", "friction = 95.0"), "range1").find("[0, 90)"),
+            std::string::npos);
+  EXPECT_NE(sceneError(replaced(blockOnBase(), "kn = 1e8", "kn = -1e8"), "range2").find("must be > 0"),
+            std::string::npos);
+  EXPECT_NE(sceneError(blockOnBase("", "cohesion = -1.0\n"), "range3").find("must be >= 0"), std::string::npos);
+  EXPECT_NE(sceneError(replaced(blockOnBase(), "cycles = 10", "cycles = 0"), "range4").find("must be > 0"),
+            std::string::npos);
+}
+
+TEST(SceneReader, SyntaxErrorNamesTheLine) {
+  VDEC_REQUIREMENTS("REQ-IO-002");
+  const std::string e = sceneError(replaced(blockOnBase(), "rounding = 0.01", "rounding = = 0.01"), "syntax");
+  EXPECT_TRUE(std::regex_search(e, std::regex(R"(syntax\.toml:4: )"))) << e;
+}
+
+TEST(SceneReader, ReferencesToUnknownNamesAreErrors) {
+  VDEC_REQUIREMENTS("REQ-IO-002");
+  EXPECT_NE(sceneError(replaced(blockOnBase(), "material = \"rock\"\nvertices = [[-0.5", "material = \"granite\"\nvertices = [[-0.5"), "material")
+                .find("no block material named 'granite'"),
+            std::string::npos);
+  const std::string history = blockOnBase() + "[[history]]\nname = \"x\"\nquantity = \"block.x\"\nblock = \"lid\"\n";
+  EXPECT_NE(sceneError(history, "history").find("no block named 'lid'"), std::string::npos);
+  const std::string quantity = blockOnBase() + "[[history]]\nname = \"x\"\nquantity = \"block.z\"\nblock = \"top\"\n";
+  EXPECT_NE(sceneError(quantity, "quantity").find("unknown quantity 'block.z'"), std::string::npos);
+}
+
+TEST(SceneReader, InvalidPolygonIsAGeometryErrorNamingTheBlock) {
+  VDEC_REQUIREMENTS("REQ-GEOM-002");
+  try {
+    sceneFromText(replaced(blockOnBase(), "[[-0.5, 0.0], [0.5, 0.0], [0.5, 1.0], [-0.5, 1.0]]",
+                           "[[-0.5, 0.0], [-0.5, 1.0], [0.5, 1.0], [0.5, 0.0]]"),
+                  "clockwise");
+    FAIL();
+  } catch (const GeometryError& e) {
+    EXPECT_NE(std::string(e.what()).find("block 'top'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneReader, OverridesReplaceKeysAndAreRecorded) {
+  VDEC_REQUIREMENTS("REQ-IO-003");
+  const std::string path = writeSceneFile(blockOnBase(), "override");
+  const Scene s = readScene(path, {"solver.frac=0.35", "model.gravity=[1.0, -5.0]"});
+  EXPECT_DOUBLE_EQ(s.settings.frac, 0.35);
+  EXPECT_DOUBLE_EQ(s.model.gravity.x, 1.0);
+  ASSERT_EQ(s.overrides.size(), 2u);
+  EXPECT_THROW(readScene(path, {"solver.frac"}), SceneError);
+  EXPECT_THROW(readScene(path, {"block.frac=1"}), SceneError);  // an array of tables
+}
+
+TEST(SceneReader, RegionIsCutIntoNamedBlocks) {
+  VDEC_REQUIREMENTS("REQ-GEOM-003");
+  const std::string text = R"(
+[model]
+rounding = 0.01
+[stop]
+cycles = 1
+[[block_material]]
+name = "rock"
+density = 2000.0
+[[joint_material]]
+name = "j"
+kn = 1e9
+ks = 1e9
+[[region]]
+name = "wall"
+material = "rock"
+vertices = [[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [0.0, 2.0]]
+[[region.joint_set]]
+angle = 90.0
+spacing = 1.0
+[[region.crack]]
+from = [-1.0, 1.0]
+to = [5.0, 1.0]
+)";
+  const Scene s = sceneFromText(text, "region");
+  EXPECT_EQ(s.model.blocks.size(), 8);
+  EXPECT_EQ(s.model.blocks.name[0], "wall.1");
+  double mass = 0.0;
+  for (double m : s.model.blocks.mass) mass += m;
+  EXPECT_NEAR(mass, 2000.0 * 8.0, 1e-9);
+}
