@@ -66,7 +66,7 @@ void Cycle::buildStages() {
                        model_.time += dt_;
                        ++model_.cycle;
                      }});
-  if (!historySpecs_.empty()) stages_.push_back({"histories", [this] { recordHistories(); }});
+  if (!historySpecs_.empty()) stages_.push_back({"histories", [this] { recordHistories(false); }});
 }
 
 void Cycle::checkEnergy() {
@@ -98,11 +98,16 @@ void Cycle::checkEnergy() {
   }
 }
 
-void Cycle::recordHistories() {
+void Cycle::recordHistories(bool initial) {
+  // Block positions are those just reached, at `time`; joint and model measures were formed in
+  // this step's contact and motion stages, at the start of the step, so they carry that time.
+  // Before the first step joints have not been evaluated yet, so only blocks are sampled.
   for (std::size_t i = 0; i < historySpecs_.size(); ++i) {
     const HistorySpec& h = historySpecs_[i];
     if (model_.cycle % h.every != 0) continue;
-    histories_[i].t.push_back(model_.time);
+    const bool block = findHistorySubject(h.quantity) == HistorySubject::Block;
+    if (initial && !block) continue;
+    histories_[i].t.push_back(block || initial ? model_.time : model_.time - dt_);
     histories_[i].value.push_back(sampleHistory(model_, h, monitors_));
   }
 }
@@ -126,7 +131,7 @@ RunReport Cycle::run() {
   const auto start = Clock::now();
   const bool progress = settings_.progress && isatty(STDERR_FILENO);
   auto lastPrint = start;
-  if (!historySpecs_.empty()) recordHistories();
+  if (!historySpecs_.empty()) recordHistories(true);
   RunReport report;
   try {
     while (!stopReached(report.stopReason)) {

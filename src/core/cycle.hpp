@@ -72,7 +72,7 @@ class Cycle {
   };
   void buildStages();
   void checkEnergy();
-  void recordHistories();
+  void recordHistories(bool initial);
   bool stopReached(std::string& reason) const;
   void printProgress(bool final) const;
 

@@ -37,6 +37,12 @@ std::optional<HistoryQuantityInfo> findHistoryQuantity(std::string_view name) {
   return std::nullopt;
 }
 
+HistorySubject findHistorySubject(HistoryQuantity quantity) {
+  for (const auto& info : historyQuantities())
+    if (info.quantity == quantity) return info.subject;
+  return HistorySubject::Model;
+}
+
 namespace {
 
 double jointMeasure(const Model& m, const HistorySpec& h) {

@@ -30,6 +30,7 @@ struct HistoryQuantityInfo {
 
 const std::vector<HistoryQuantityInfo>& historyQuantities();
 std::optional<HistoryQuantityInfo> findHistoryQuantity(std::string_view name);
+HistorySubject findHistorySubject(HistoryQuantity quantity);
 
 struct HistorySpec {
   std::string name;

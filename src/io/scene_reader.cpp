@@ -175,20 +175,36 @@ void applyOverride(toml::table& root, const std::string& text) {
   std::size_t start = 0;
   for (;;) {
     const auto dot = path.find('.', start);
-    const std::string part = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    std::string part = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    // "name[i]" selects the i-th table of an array of tables, e.g. joint_material[0].cohesion.
+    long index = -1;
+    if (const auto open = part.find('['); open != std::string::npos && part.back() == ']') {
+      try {
+        index = std::stol(part.substr(open + 1, part.size() - open - 2));
+      } catch (const std::exception&) {
+        throw SceneError("--set '" + text + "': bad index in '" + part + "'");
+      }
+      part = part.substr(0, open);
+    }
     if (part.empty()) throw SceneError("--set '" + text + "': empty key in '" + path + "'");
     if (dot == std::string::npos) {
+      if (index >= 0) throw SceneError("--set '" + text + "': the last key cannot be indexed");
       table->insert_or_assign(part, *parsed.get("value"));
       return;
     }
     toml::node* next = table->get(part);
-    if (!next) {
+    if (index >= 0) {
+      toml::array* array = next ? next->as_array() : nullptr;
+      if (!array || !array->is_array_of_tables() || index >= static_cast<long>(array->size()))
+        throw SceneError("--set '" + text + "': '" + part + "' has no table [" + std::to_string(index) + "]");
+      next = array->get(static_cast<std::size_t>(index));
+    } else if (!next) {
       table->insert(part, toml::table{});
       next = table->get(part);
     }
     if (!next->is_table())
-      throw SceneError("--set '" + text + "': '" + part + "' is not a table; only keys of tables such as "
-                       "solver.frac can be overridden");
+      throw SceneError("--set '" + text + "': '" + part + "' is not a table; name a table key such as "
+                       "solver.frac, or one table of an array such as joint_material[0].cohesion");
     table = next->as_table();
     start = dot + 1;
   }

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <regex>
 
 #include "core/errors.hpp"
@@ -107,7 +108,11 @@ TEST(SceneReader, OverridesReplaceKeysAndAreRecorded) {
   EXPECT_DOUBLE_EQ(s.model.gravity.x, 1.0);
   ASSERT_EQ(s.overrides.size(), 2u);
   EXPECT_THROW(readScene(path, {"solver.frac"}), SceneError);
-  EXPECT_THROW(readScene(path, {"block.frac=1"}), SceneError);  // an array of tables
+  EXPECT_THROW(readScene(path, {"block.frac=1"}), SceneError);  // an array of tables, not indexed
+  EXPECT_THROW(readScene(path, {"block[5].name=\"x\""}), SceneError);
+  const Scene indexed = readScene(path, {"joint_material[0].friction=20.0", "block[1].velocity=[1.0, 0.0]"});
+  EXPECT_NEAR(indexed.model.jointMaterials[0].tanFriction, std::tan(20.0 * M_PI / 180.0), 1e-15);
+  EXPECT_EQ(indexed.model.blocks.velocity[1].x, 1.0);
 }
 
 TEST(SceneReader, RegionIsCutIntoNamedBlocks) {

@@ -1,0 +1,1 @@
+"""Closed-form references for vdec's verification problems. Independent of the solver."""
