@@ -1,169 +1,368 @@
-"""Closed forms for rigid blocks on Coulomb joints (VERIFICATION-CATALOG, first section).
+"""Closed-form references for rigid blocks on Coulomb joints (VERIFICATION-CATALOG, first section).
+
+Independent of the solver: only math, numpy and scipy are used, and every formula is derived
+here from the physics (or from the solver's published time-stepping equations, never its code).
 
 Sign conventions: joint normal stress and force compression positive, normal displacement
-closing positive, settlement positive downward. SI units; angles in degrees where named _deg.
+closing positive, settlement positive downward, shear displacement positive in the direction
+of loading. SI units throughout; angles in degrees where the parameter name ends in _deg.
+Functions whose first argument is a time or displacement accept numpy arrays and return arrays.
 """
 import math
 
 import numpy as np
+import scipy.linalg
 
 
 def _tan(deg):
     return math.tan(math.radians(deg))
 
 
+# ---------------------------------------------------------------- block on an inclined joint
+
+
+def _incline_net_acceleration(g, theta_deg, phi_deg, cohesion, contact_length, mass):
+    """Driving minus resisting force per unit mass along the slope; 0 at limiting equilibrium."""
+    th = math.radians(theta_deg)
+    driving = g * math.sin(th)
+    resisting = g * math.cos(th) * _tan(phi_deg) + cohesion * contact_length / mass
+    net = driving - resisting
+    # At theta = phi (no cohesion) the two sides agree only to round-off; limiting equilibrium
+    # must read as sticking, not as a 1e-16 m/s^2 slide.
+    if net <= 1e-12 * (abs(driving) + abs(resisting)):
+        return 0.0
+    return net
+
+
+def incline_acceleration(*, g, theta_deg, phi_deg, cohesion=0.0, contact_length=1.0, mass=1.0):
+    """Acceleration down the slope of a block on a joint inclined at theta:
+
+        a = g (sin theta - cos theta tan phi) - c L / m,   and 0 when that is <= 0.
+
+    Newton's second law along the slope with the Coulomb joint strength c L + N tan phi,
+    N = m g cos theta (e.g. Meriam & Kraige, Engineering Mechanics: Dynamics, friction on an
+    incline; Coulomb slip joint of NUREG/CR-5429). When the driving force does not exceed the
+    strength, friction holds the block and the acceleration is zero, not negative. A net
+    acceleration within 1e-12 (relative) of zero counts as limiting equilibrium, i.e. 0.
+    """
+    return _incline_net_acceleration(g, theta_deg, phi_deg, cohesion, contact_length, mass)
+
+
+def incline_half_acceleration(*, g, theta_deg, phi_deg, cohesion=0.0, contact_length=1.0, mass=1.0):
+    """a / 2: the slope of the down-slope displacement against t^2, since x = a t^2 / 2."""
+    return 0.5 * incline_acceleration(g=g, theta_deg=theta_deg, phi_deg=phi_deg, cohesion=cohesion,
+                                      contact_length=contact_length, mass=mass)
+
+
+def incline_slides(*, g, theta_deg, phi_deg, cohesion=0.0, contact_length=1.0, mass=1.0):
+    """True when m g sin theta > c L + m g cos theta tan phi (Coulomb criterion on the joint).
+
+    Equality counts as sticking: the joint can just carry the load. Evaluated per unit mass with
+    the same round-off allowance as incline_acceleration, so the two always agree.
+    """
+    return _incline_net_acceleration(g, theta_deg, phi_deg, cohesion, contact_length, mass) > 0.0
+
+
+def incline_displacement(t, *, g, theta_deg, phi_deg, t0=0.0, cohesion=0.0, contact_length=1.0, mass=1.0):
+    """Down-slope displacement of a block released from rest at t0:
+
+        x(t) = a (t - t0)^2 / 2 for t > t0, else 0,   a = incline_acceleration(...).
+
+    Uniform acceleration from rest (constant-acceleration kinematics).
+    """
+    t = np.asarray(t, dtype=float)
+    a = incline_acceleration(g=g, theta_deg=theta_deg, phi_deg=phi_deg, cohesion=cohesion,
+                             contact_length=contact_length, mass=mass)
+    elapsed = t - t0
+    return np.where(elapsed > 0.0, 0.5 * a * elapsed * elapsed, 0.0)
+
+
+# ---------------------------------------------------------------- block resting on a joint
+
+
 def resting_normal_force(*, mass, g):
-    """Normal force of a block resting on a joint: m g."""
+    """Normal force of a block resting on a horizontal joint: N = m g (static equilibrium)."""
     return mass * g
 
 
 def resting_settlement(*, mass, g, kn, contact_length):
-    """Static deflection of the joint spring, m g / (kn L) (NUREG/CR-5429 1.3-3)."""
+    """Static closure of the joint under the block's weight: d = m g / (kn L).
+
+    Linear joint normal law sn = kn un with sn = m g / L (Goodman-type joint; NUREG/CR-5429
+    joint normal stiffness).
+    """
     return mass * g / (kn * contact_length)
 
 
+# ---------------------------------------------------------------- block oscillating on a joint
+
+
 def oscillator_frequency(*, mass, kn, contact_length):
+    """Natural angular frequency of the block on its joint spring: w = sqrt(kn L / m).
+
+    Single-degree-of-freedom oscillator with stiffness k = kn L (e.g. Chopra, Dynamics of
+    Structures, ch. 2).
+    """
     return math.sqrt(kn * contact_length / mass)
 
 
 def oscillator_period(*, mass, kn, contact_length):
-    """T = 2 pi sqrt(m / (kn L))."""
+    """Natural period T = 2 pi / w = 2 pi sqrt(m / (kn L))."""
     return 2.0 * math.pi / oscillator_frequency(mass=mass, kn=kn, contact_length=contact_length)
 
 
 def oscillator_settlement_history(t, *, mass, g, kn, contact_length, alpha=0.0):
-    """Block released at zero overlap: y(t) = d [1 - e^{-a t/2} (cos wd t + a/(2 wd) sin wd t)]."""
+    """Settlement of a block released from rest at zero overlap onto a joint, under gravity:
+
+        y(t) = d [1 - e^{-alpha t/2} (cos wd t + alpha / (2 wd) sin wd t)],
+        d = m g / (kn L),  w^2 = kn L / m,  wd = sqrt(w^2 - alpha^2 / 4).
+
+    Solution of y'' + alpha y' + w^2 y = g with y(0) = y'(0) = 0; mass-proportional damping
+    (force -alpha m v, NUREG/CR-5429 1.3-20) is viscous damping with 2 xi w = alpha (Chopra,
+    Dynamics of Structures, 2.2). Underdamped only (alpha < 2 w), else ValueError.
+    """
     t = np.asarray(t, dtype=float)
     w = oscillator_frequency(mass=mass, kn=kn, contact_length=contact_length)
-    if alpha >= 2.0 * w:
-        raise ValueError("only the underdamped case (alpha < 2 w) has this form")
+    if not 0.0 <= alpha < 2.0 * w:
+        raise ValueError(f"alpha = {alpha} 1/s: this form needs 0 <= alpha < 2 w = {2.0 * w} (underdamped)")
     d = resting_settlement(mass=mass, g=g, kn=kn, contact_length=contact_length)
     wd = math.sqrt(w * w - alpha * alpha / 4.0)
-    return d * (1.0 - np.exp(-alpha * t / 2.0) * (np.cos(wd * t) + alpha / (2.0 * wd) * np.sin(wd * t)))
-
-
-def central_difference_period(*, mass, kn, contact_length, dt):
-    """Exact period of the undamped central-difference recurrence: sin(w_num dt / 2) = w dt / 2."""
-    w = oscillator_frequency(mass=mass, kn=kn, contact_length=contact_length)
-    if w * dt >= 2.0:
-        raise ValueError("w dt >= 2: the recurrence is unstable and has no period")
-    return 2.0 * math.pi / ((2.0 / dt) * math.asin(w * dt / 2.0))
-
-
-def central_difference_settlement_history(t, *, mass, g, kn, contact_length, alpha, dt):
-    """Closed form of the damped central-difference recurrence (NUREG/CR-5429 1.3-21),
-
-        v_{n+1/2} = [v_{n-1/2} (1 - a dt/2) + (g - w^2 y_n) dt] / (1 + a dt/2),  y_{n+1} = y_n + v_{n+1/2} dt,
-
-    with y_0 = 0, v_{-1/2} = 0. Eliminating v: y_{n+1} - 2 c y_n + q y_{n-1} = b, with
-    q = (1 - a dt/2)/(1 + a dt/2), 2c = 1 + q - w^2 dt^2 / (1 + a dt/2), b = g dt^2 / (1 + a dt/2).
-    The fixed point is d = g / w^2; the roots of z^2 - 2 c z + q = 0 are r e^{+-i theta}, r = sqrt(q),
-    so y_n = d + r^n (A cos n theta + B sin n theta), A = -d, and B from y_1 = b (since y_{-1} = y_0).
-    """
-    n = np.rint(np.asarray(t, dtype=float) / dt)
-    w2 = kn * contact_length / mass
-    h = 1.0 + alpha * dt / 2.0
-    q = (1.0 - alpha * dt / 2.0) / h
-    c = 0.5 * (1.0 + q - w2 * dt * dt / h)
-    if c * c >= q:
-        raise ValueError("the recurrence is not oscillatory at this dt and alpha")
-    r = math.sqrt(q)
-    theta = math.acos(c / r)
-    d = g / w2
-    y1 = g * dt * dt / h
-    a_coef = -d
-    b_coef = (y1 - d - r * a_coef * math.cos(theta)) / (r * math.sin(theta))
-    return d + r ** n * (a_coef * np.cos(n * theta) + b_coef * np.sin(n * theta))
+    decay = np.exp(-0.5 * alpha * t)
+    return d * (1.0 - decay * (np.cos(wd * t) + alpha / (2.0 * wd) * np.sin(wd * t)))
 
 
 def log_decrement(*, alpha, mass, kn, contact_length):
-    """delta = 2 pi xi / sqrt(1 - xi^2), xi = alpha / (2 w)."""
+    """Logarithmic decrement of the damped oscillation, ln(y_k / y_{k+1}) over one period:
+
+        delta = 2 pi xi / sqrt(1 - xi^2),  xi = alpha / (2 w)
+
+    (Chopra, Dynamics of Structures, 2.2.4). Needs xi < 1, else ValueError.
+    """
     xi = alpha / (2.0 * oscillator_frequency(mass=mass, kn=kn, contact_length=contact_length))
+    if not 0.0 <= xi < 1.0:
+        raise ValueError(f"damping ratio {xi}: the decrement needs 0 <= xi < 1 (underdamped)")
     return 2.0 * math.pi * xi / math.sqrt(1.0 - xi * xi)
 
 
-def incline_acceleration(*, g, theta_deg, phi_deg, cohesion=0.0, contact_length=1.0, mass=1.0):
-    """a = g (sin theta - cos theta tan phi) - c L / m, or 0 when the block stays."""
-    th = math.radians(theta_deg)
-    a = g * (math.sin(th) - math.cos(th) * _tan(phi_deg)) - cohesion * contact_length / mass
-    return max(a, 0.0)
+# ---------------------------------------------------------------- the central-difference scheme itself
+
+
+def central_difference_period(*, mass, kn, contact_length, dt):
+    """Exact period of the undamped central-difference recurrence on the joint spring:
+
+        T_num = 2 pi / w_num,   sin(w_num dt / 2) = w dt / 2.
+
+    Putting y_n = e^{i n w_num dt} into y_{n+1} - 2 y_n + y_{n-1} = -(w dt)^2 y_n gives
+    cos(w_num dt) = 1 - (w dt)^2 / 2, i.e. the relation above (central-difference recurrence;
+    cf. Bathe, Finite Element Procedures, 9.4). The scheme is stable only for w dt < 2, where
+    the roots stay on the unit circle; otherwise ValueError.
+    """
+    w = oscillator_frequency(mass=mass, kn=kn, contact_length=contact_length)
+    if w * dt >= 2.0:
+        raise ValueError(f"w dt = {w * dt} >= 2: the recurrence is unstable and has no period")
+    w_num = 2.0 * math.asin(0.5 * w * dt) / dt
+    return 2.0 * math.pi / w_num
+
+
+def central_difference_settlement_history(t, *, mass, g, kn, contact_length, alpha, dt):
+    """Exact solution of the solver's time-stepping recurrence for the block released on a joint.
+
+    The recurrence (velocities at half steps, NUREG/CR-5429 1.3-21), with k = kn L, w^2 = k / m:
+
+        v_{n+1/2} = [v_{n-1/2} (1 - alpha dt/2) + (g - w^2 y_n) dt] / (1 + alpha dt/2),
+        y_{n+1}   = y_n + v_{n+1/2} dt,          y_0 = 0,  v_{-1/2} = 0.
+
+    Eliminating v (with h = 1 + alpha dt/2 and y_{-1} = y_0, which is what v_{-1/2} = 0 means):
+
+        y_{n+1} - 2 c y_n + q y_{n-1} = g dt^2 / h,
+        q = (1 - alpha dt/2) / h,   c = (2 - w^2 dt^2) / (2 h).
+
+    The fixed point is d = g / w^2. The characteristic roots of z^2 - 2 c z + q = 0 are
+    r e^{+-i theta} with r = sqrt(q) and, since q - c^2 = dt^2 D / (4 h^2), D = 4 w^2 - alpha^2 - w^4 dt^2,
+
+        tan theta = dt sqrt(D) / (2 - w^2 dt^2).
+
+    So y_n = d + r^n (A cos n theta + B sin n theta). y_0 = 0 gives A = -d; y_1 = g dt^2 / h gives
+    B = (y_1 - d + c d) / sqrt(q - c^2), which simplifies to
+
+        B = g (dt - alpha / w^2) / sqrt(D).
+
+    (The simplified forms avoid the cancellation in 1 - c and q - c^2 at small w dt.) Needs D > 0:
+    the recurrence then oscillates and decays (D > 0 also implies alpha dt < 2, so q > 0);
+    otherwise ValueError.
+
+    t must be on the step grid, t = n dt (to round-off); it is rounded to the nearest n.
+
+    Note: v_{-1/2} = 0 is not v(0) = 0: the start is equivalent to an initial velocity of about
+    g dt / 2, so this history differs from oscillator_settlement_history by O(w dt) relative
+    (the sin term B ~ d w dt / 2 at alpha = 0), not O(dt^2).
+    """
+    steps = np.asarray(t, dtype=float) / dt
+    n = np.rint(steps)
+    if np.any(np.abs(steps - n) > 1e-6):
+        raise ValueError("t is not on the time-step grid t = n dt")
+    if np.any(n < 0):
+        raise ValueError("the recurrence starts at t = 0; negative t has no value")
+    w2 = kn * contact_length / mass
+    disc = 4.0 * w2 - alpha * alpha - w2 * w2 * dt * dt
+    if alpha < 0.0 or disc <= 0.0:
+        raise ValueError(f"alpha = {alpha}, w dt = {math.sqrt(w2) * dt}: the recurrence does not oscillate "
+                         "(needs 4 w^2 - alpha^2 - w^4 dt^2 > 0 and alpha >= 0)")
+    h = 1.0 + 0.5 * alpha * dt
+    r = math.sqrt((1.0 - 0.5 * alpha * dt) / h)
+    theta = math.atan2(dt * math.sqrt(disc), 2.0 - w2 * dt * dt)
+    d = g / w2
+    a_coef = -d
+    b_coef = g * (dt - alpha / w2) / math.sqrt(disc)
+    return d + np.power(r, n) * (a_coef * np.cos(n * theta) + b_coef * np.sin(n * theta))
+
+
+# ---------------------------------------------------------------- direct shear of a joint
+
+
+def coulomb_peak_strength(*, sn, cohesion, phi_deg):
+    """Coulomb joint strength tau_p = c + sn tan phi (Mohr-Coulomb criterion on the joint)."""
+    return cohesion + sn * _tan(phi_deg)
+
+
+def coulomb_residual_strength(*, sn, phi_deg):
+    """Strength after the cohesion is lost: tau_r = sn tan phi (NUREG/CR-5429 model 5,
+    Coulomb slip with residual strength, after the first slip)."""
+    return sn * _tan(phi_deg)
 
 
 def direct_shear_constant_normal_stress(us, *, ks, sn, cohesion, phi_deg, psi_deg=0.0):
-    """(tau, opening): tau = ks us up to us_y = (c + sn tan phi)/ks, then c + sn tan phi;
-    opening (us - us_y) tan psi while slipping."""
+    """(tau, normal_opening) of a joint sheared monotonically (us >= 0) at constant normal stress:
+
+        tau = ks us                     for us <= us_y = (c + sn tan phi) / ks,
+        tau = c + sn tan phi            after,
+        opening = (us - us_y) tan psi   for us > us_y, else 0.
+
+    Elastic-perfectly-plastic Coulomb slip joint; dilation only during slip, at the dilation
+    angle psi, on the plastic shear displacement us - us_y (NUREG/CR-5429 Coulomb slip joint
+    with dilation). The opening is a normal displacement in the opening sense (positive up).
+    """
     us = np.asarray(us, dtype=float)
-    strength = cohesion + sn * _tan(phi_deg)
+    strength = coulomb_peak_strength(sn=sn, cohesion=cohesion, phi_deg=phi_deg)
     us_y = strength / ks
-    tau = np.where(us < us_y, ks * us, strength)
-    opening = np.where(us > us_y, (us - us_y) * _tan(psi_deg), 0.0)
+    slipping = us > us_y
+    tau = np.where(slipping, strength, ks * us)
+    opening = np.where(slipping, (us - us_y) * _tan(psi_deg), 0.0)
     return tau, opening
 
 
 def direct_shear_block_rise(us, *, ks, kn, sn, cohesion, phi_deg, psi_deg):
-    """Vertical displacement of a block sheared under a dead normal load on a unit-length joint:
-    settlement -sn/kn plus the dilatant opening."""
+    """Vertical position of a block sheared under a dead normal load on a unit-length joint,
+    measured from zero overlap: the elastic closure -sn / kn plus the dilatant opening of
+    direct_shear_constant_normal_stress."""
     _, opening = direct_shear_constant_normal_stress(us, ks=ks, sn=sn, cohesion=cohesion, phi_deg=phi_deg,
                                                      psi_deg=psi_deg)
     return -sn / kn + opening
 
 
 def direct_shear_constant_normal_displacement(us, *, ks, kn, sn0, cohesion, phi_deg, psi_deg):
-    """(tau, sn) with the normal displacement held: after yield, sn = sn0 + kn tan psi us_p and
-    tau = c + sn tan phi = ks (us - us_p), so us_p = (ks (us - us_y)) / (ks + kn tan phi tan psi)."""
+    """(tau, sn) of a joint sheared monotonically (us >= 0) with its normal displacement held.
+
+    Elastic until yield at us_y = (c + sn0 tan phi) / ks. After yield, us = us_e + us_p with
+    tau = ks us_e; the dilation us_p tan psi cannot open the held joint, so it is taken up
+    elastically and sn = sn0 + kn tan psi us_p; slip keeps tau = c + sn tan phi. Solving
+
+        ks (us - us_p) = c + (sn0 + kn tan psi us_p) tan phi
+
+    gives us_p = ks (us - us_y) / (ks + K), K = kn tan phi tan psi, so
+
+        tau = tau_y + (us - us_y) ks K / (ks + K),   sn = sn0 + kn tan psi us_p.
+
+    The post-yield slope is d tau / d us = ks K / (ks + K): the joint spring ks in series with
+    the dilatancy hardening K (derived here from the Coulomb slip joint with dilation).
+    """
     us = np.asarray(us, dtype=float)
     tp, ts = _tan(phi_deg), _tan(psi_deg)
     us_y = (cohesion + sn0 * tp) / ks
-    us_p = np.where(us > us_y, ks * (us - us_y) / (ks + kn * tp * ts), 0.0)
+    hardening = kn * tp * ts
+    slipping = us > us_y
+    us_p = np.where(slipping, ks * (us - us_y) / (ks + hardening), 0.0)
     sn = sn0 + kn * ts * us_p
-    tau = np.where(us > us_y, cohesion + sn * tp, ks * us)
+    tau = np.where(slipping, ks * (us - us_p), ks * us)
     return tau, sn
 
 
-def coulomb_peak_strength(*, sn, cohesion, phi_deg):
-    """c + sn tan phi."""
-    return cohesion + sn * _tan(phi_deg)
-
-
-def coulomb_residual_strength(*, sn, phi_deg):
-    """sn tan phi: the strength of a model-5 joint after its first slip."""
-    return sn * _tan(phi_deg)
-
-
 def direct_shear_coulomb_fracture(us, *, ks, sn, cohesion, phi_deg):
-    """Model 5 at constant sn: ks us up to the peak c + sn tan phi, then sn tan phi."""
+    """Model 5 (Coulomb slip with residual strength) sheared monotonically at constant sn:
+
+        tau = ks us          while ks us <= c + sn tan phi,
+        tau = sn tan phi     after the peak (the cohesion is lost at the first slip).
+
+    The drop is abrupt: once past the peak, the elastic part ks us exceeds the residual strength,
+    so the joint slides at sn tan phi.
+    """
     us = np.asarray(us, dtype=float)
     peak = coulomb_peak_strength(sn=sn, cohesion=cohesion, phi_deg=phi_deg)
-    return np.where(ks * us <= peak, ks * us, coulomb_residual_strength(sn=sn, phi_deg=phi_deg))
+    residual = coulomb_residual_strength(sn=sn, phi_deg=phi_deg)
+    return np.where(ks * us <= peak, ks * us, residual)
 
 
 def tensile_opening_stress(un, *, kn, tension):
-    """sn = kn un while sn >= -T0; zero once the joint has broken (monotonic opening)."""
+    """Normal stress of a joint pulled apart monotonically (un decreasing from 0; closing positive):
+
+        sn = kn un   while sn >= -T0, i.e. un >= -T0 / kn;   sn = 0 once broken.
+
+    Linear normal law with tensile strength T0; a broken joint carries no tension
+    (NUREG/CR-5429 joint tensile strength).
+    """
     un = np.asarray(un, dtype=float)
     return np.where(un >= -tension / kn, kn * un, 0.0)
 
 
+# ---------------------------------------------------------------- rigid block on two corner contacts
+
+
 def rigid_block_frequencies(*, width, height, density, kn, ks, contact_length_per_corner=None):
-    """Natural angular frequencies of a rectangular block on two bottom-corner contacts
-    (normal spring kn Lc, shear spring ks Lc at (+-w/2, -h/2)), in (x, y, theta)."""
-    import scipy.linalg
+    """Sorted natural angular frequencies [rad/s] of a rectangular rigid block (unit thickness)
+    resting on a fixed base through its two bottom corners.
+
+    Degrees of freedom (x, y, theta) at the centroid; M = diag(m, m, I), m = rho w h,
+    I = m (w^2 + h^2) / 12. Each corner at (px, py) = (+-w/2, -h/2) carries a normal spring
+    kn Lc along y and a shear spring ks Lc along x (Lc defaults to w / 2). A small rotation moves
+    the corner by (-py theta, px theta), so the spring elongations are g . (x, y, theta) with
+    g_shear = (1, 0, -py) and g_normal = (0, 1, px), and K = sum k g g^T. The shear springs sit
+    below the centroid, so they couple x and theta (rocking-sliding). Solves K phi = w^2 M phi
+    (small-displacement rigid-body dynamics, e.g. Clough & Penzien, Dynamics of Structures).
+    """
     lc = width / 2.0 if contact_length_per_corner is None else contact_length_per_corner
     m = density * width * height
     inertia = m * (width ** 2 + height ** 2) / 12.0
+    py = -height / 2.0
     stiffness = np.zeros((3, 3))
-    for x in (-width / 2.0, width / 2.0):
-        y = -height / 2.0
-        # shear spring along x at (x, y): displacement of the point along x is ux - y theta
-        gs = np.array([1.0, 0.0, -y])
-        gn = np.array([0.0, 1.0, x])
-        stiffness += ks * lc * np.outer(gs, gs) + kn * lc * np.outer(gn, gn)
+    for px in (-width / 2.0, width / 2.0):
+        g_shear = np.array([1.0, 0.0, -py])
+        g_normal = np.array([0.0, 1.0, px])
+        stiffness += ks * lc * np.outer(g_shear, g_shear) + kn * lc * np.outer(g_normal, g_normal)
     w2 = scipy.linalg.eigh(stiffness, np.diag([m, m, inertia]), eigvals_only=True)
-    return np.sort(np.sqrt(w2))
+    # A zero stiffness (ks = 0) leaves a free mode whose eigenvalue may come out as -1e-12.
+    return np.sort(np.sqrt(np.clip(w2, 0.0, None)))
+
+
+def rigid_block_time_step(*, mass, kn, ks, typical_length, frac):
+    """The solver's automatic time step for rigid blocks:
+
+        dt = FRAC * 2 sqrt(M_min / K_max),   K_max = max(kn, ks) * l_typ
+
+    (NUREG/CR-5429 1.3-28, 1.3-29), with M_min the smallest block mass (here `mass`).
+    """
+    return frac * 2.0 * math.sqrt(mass / (max(kn, ks) * typical_length))
 
 
 def critical_frac(*, width, height, density, kn, ks, typical_length):
-    """FRAC at which w_max dt = 2 for dt = FRAC 2 sqrt(M / (max(kn, ks) l_typ)) (1.3-28, 1.3-29)."""
+    """The time-step fraction FRAC at which the single block of rigid_block_frequencies becomes
+    unstable.
+
+    The solver takes dt = FRAC * 2 sqrt(M_min / K_max), K_max = max(kn, ks) l_typ
+    (NUREG/CR-5429 1.3-28, 1.3-29; rigid_block_time_step), with M_min = m = rho w h here.
+    Central differences are stable while w_max dt < 2, so the limit is
+    FRAC = 1 / (w_max sqrt(m / K_max)).
+    """
     w_max = rigid_block_frequencies(width=width, height=height, density=density, kn=kn, ks=ks)[-1]
     m = density * width * height
-    dt_per_frac = 2.0 * math.sqrt(m / (max(kn, ks) * typical_length))
-    return 2.0 / (w_max * dt_per_frac)
+    dt_at_frac_one = rigid_block_time_step(mass=m, kn=kn, ks=ks, typical_length=typical_length, frac=1.0)
+    return 2.0 / (w_max * dt_at_frac_one)

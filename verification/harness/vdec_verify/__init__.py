@@ -1,17 +1,42 @@
-"""vdec_verify: runs vdec's verification problems, compares them with closed forms, reports.
+"""vdec_verify: runs vdec's verification problems, compares them with closed forms, writes reports.
 
-Run from the repository root:
-    PYTHONPATH=verification/harness:verification /usr/bin/python3 -m vdec_verify run --vdec build/vdec
+Usage, from the repository root:
 
-THE PASS RULE (the same for every check): pass when e_abs <= atol + rtol * s, where
-  scalar:      e_abs = |x_h - x|,                          s = |x|
-  L2:          e_abs = sqrt(sum w (f_h - f)^2 / sum w),     s = sqrt(sum w f^2 / sum w)   (w: trapezoid weights)
-  Linf:        e_abs = max |f_h - f|,                       s = max |f|
-  upper_bound: pass when x_h <= x + atol + rtol |x|
-  equal:       pass when x_h == x (exit codes)
-The reported error is e_abs / s (e_abs when s == 0) and the tolerance (atol + rtol s) / s.
+    PYTHONPATH=verification/harness:verification /usr/bin/python3 -m vdec_verify run --vdec build/vdec \
+        [--problems verification/problems] [--filter ID_SUBSTRING_OR_GLOB ...] [--level base|full] \
+        [--jobs 2] [--out reports/verification]
+    PYTHONPATH=verification/harness:verification /usr/bin/python3 -m vdec_verify check [--problems ...]
+
+`run` runs every selected problem (one folder per problem under --problems, each with a
+problem.toml; see vdec_verify.problem for its keys), compares each check with its closed-form
+reference and writes summary.json, index.html, report.pdf, junit.xml, one PNG plot per problem
+and each run's results.json under OUT/runs/<ID>[/<variant>]/. It prints a table and ends with
+the line "N passed, N failed". Exit status: 0 when every selected problem passes, 1 when any
+fails or is invalid (a problem.toml that cannot be run as written is reported as "invalid",
+never skipped), 2 on a usage error. `check` only loads and validates the problem files.
+
+--level base runs the problems marked level = "base" (the test suite); --level full (the
+default) runs them all. --filter keeps the problems whose id contains one of the given
+substrings or matches one of the given globs (case-insensitive).
+
+Modules: problem (load and validate problem.toml), extract (what a check reads from a run),
+norms (error norms, the pass rule and the independence guard), runner (runs the solver in
+parallel), report (the report files), provenance (software and harness information).
 """
-PASS_RULE = ("pass when e_abs <= atol + rtol * s; scalar: e_abs = |x_h - x|, s = |x|; "
-             "L2: root-mean-square difference and value with trapezoid weights; Linf: largest difference "
-             "and value; upper_bound: x_h <= x + atol + rtol |x|; equal: x_h == x. "
-             "Reported error = e_abs / s, tolerance = (atol + rtol s) / s.")
+
+__version__ = "1.0"
+
+# THE PASS RULE, stated once; the reports print this text.
+PASS_RULE = """\
+A check passes when e_abs <= atol + rtol * s, with
+  scalar:      e_abs = |x_h - x|                            s = |x|
+  L2:          e_abs = sqrt(sum w (f_h - f)^2 / sum w)      s = sqrt(sum w f^2 / sum w)
+               (w: trapezoid weights of the samples in t, or in x for a curve)
+  Linf:        e_abs = max |f_h - f|                        s = max |f|
+  upper_bound: passes when x_h <= x + atol + rtol |x|; e_abs = x_h - x (signed), s = |x|
+  equal:       passes when x_h == x exactly (exit codes)
+where x_h, f_h are vdec's values and x, f the closed-form reference. Reported error = e_abs / s
+and tolerance = (atol + rtol s) / s (when s = 0: error = e_abs, tolerance = atol).
+A problem passes when all its checks pass and every run exits with its expected code."""
+
+__doc__ += "\nTHE PASS RULE\n\n" + PASS_RULE + "\n"

@@ -1,85 +1,296 @@
-"""Runs problems with the solver, two at a time by default, in a deterministic order."""
+"""Runs the selected problems with vdec (runs in parallel) and judges their checks.
+
+Each run is `vdec run SCENE --out OUT/runs/<ID>[/<variant>] [--set key=value ...]`; the run
+folder keeps results.json, command.txt, stdout.txt and stderr.txt. All runs of all problems
+share one pool of --jobs workers; the records come back sorted by problem id.
+"""
+import fnmatch
+import hashlib
 import json
+import math
+import shlex
 import subprocess
+import sys
 import time
-from concurrent.futures import ThreadPoolExecutor
+import tomllib
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
+from vdec_verify.extract import ExtractError, Series, extract
+from vdec_verify.norms import ReferenceProblem, compare, evaluate_reference
+from vdec_verify.problem import RUN_FILES, ProblemError, find_reference_function, load_problem
+from vdec_verify.provenance import software_of
 
-from vdec_verify.checks import evaluate, extract, reference_value
-from vdec_verify.problem import ProblemError, load_problem
+RESULTS_SCHEMA = "vdec.results/1"
+EXIT_MEANINGS = {0: "ok", 1: "internal error", 2: "command line error", 3: "scene input error", 4: "geometry error",
+                 5: "numerical instability", 6: "contact overlap beyond half the rounding length",
+                 7: "output error"}
 
 
-def discover(folder, level):
-    """Every problem folder, as {"id", "problem" or "error"}; invalid ones are kept, not skipped."""
-    found = []
-    for path in sorted(Path(folder).glob("*/problem.toml")):
+@dataclass
+class Entry:
+    """A problem folder: its Problem, or why it could not be loaded."""
+    id: str
+    folder: Path
+    problem: object = None
+    error: str = ""
+    title: str = ""           # of an invalid problem, as far as its file can be read
+    requirements: tuple = ()
+
+
+def _readable_parts(path):
+    """Title and requirements of a problem.toml that failed validation, for the reports."""
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except Exception:
+        return "", ()
+    title = data.get("title") if isinstance(data.get("title"), str) else ""
+    requirements = data.get("requirements") if isinstance(data.get("requirements"), list) else []
+    return title, tuple(r for r in requirements if isinstance(r, str))
+
+
+def discover(problems_dir):
+    """Every problem folder under problems_dir, sorted by name. A folder whose name starts with
+    "." or "_" is skipped (shared files); any other folder without a valid problem.toml becomes
+    an invalid entry, so that a broken problem is reported rather than lost."""
+    entries = []
+    for folder in sorted(p for p in Path(problems_dir).iterdir() if p.is_dir()):
+        if folder.name.startswith((".", "_")):
+            continue
+        path = folder / "problem.toml"
+        if not path.is_file():
+            entries.append(Entry(folder.name, folder, error=f"{folder}: no problem.toml"))
+            continue
         try:
-            problem = load_problem(path)
-            if level == "base" and problem.level != "base":
-                continue
-            found.append({"id": problem.id, "problem": problem})
+            entries.append(Entry(folder.name, folder, problem=load_problem(path)))
         except ProblemError as e:
-            found.append({"id": path.parent.name, "error": str(e)})
-    return found
+            title, requirements = _readable_parts(path)
+            entries.append(Entry(folder.name, folder, error=str(e), title=title, requirements=requirements))
+    return entries
 
 
-def _run_variant(problem, variant, vdec, out):
-    run_dir = out / "runs" / problem.id / (variant.name or "default")
-    command = [str(vdec), "run", str(problem.scene), "--out", str(run_dir)]
-    for o in variant.overrides:
-        command += ["--set", o]
-    completed = subprocess.run(command, capture_output=True, text=True, timeout=problem.timeout_seconds)
-    results_path = run_dir / "results.json"
-    results = json.loads(results_path.read_text()) if results_path.is_file() else {}
-    return completed.returncode, completed.stderr.strip(), results
+def matches(problem_id, patterns):
+    """True when the id contains a pattern or matches it as a glob (case-insensitive)."""
+    problem_id = problem_id.upper()
+    for pattern in patterns:
+        pattern = pattern.upper()
+        if pattern in problem_id or fnmatch.fnmatchcase(problem_id, pattern):
+            return True
+    return False
 
 
-def run_problem(entry, vdec, out):
-    record = {"id": entry["id"], "title": "", "requirements": [], "status": "invalid", "metrics": [],
-              "wall_seconds": 0.0, "cycles": 0, "scene_sha256": "", "exit_code": None, "message": "",
-              "software": None, "plots": []}
-    if "error" in entry:
-        record["message"] = entry["error"]
-        return record
-    problem = entry["problem"]
-    record.update(title=problem.title, requirements=problem.requirements)
+def select(entries, level, patterns):
+    """The entries to run: those matching the filter, at the level; invalid ones whatever their level."""
+    chosen = []
+    for entry in entries:
+        if patterns and not matches(entry.id, patterns):
+            continue
+        if entry.problem is not None and level == "base" and entry.problem.level != "base":
+            continue
+        chosen.append(entry)
+    return chosen
+
+
+@dataclass
+class RunOutcome:
+    variant: str
+    command: list
+    folder: Path
+    expect_exit: int
+    exit_code: int = None      # None: the run did not finish (timeout, could not start)
+    results: dict = None       # None: no usable results.json
+    wall_seconds: float = 0.0
+    failure: str = ""          # why the run is not as expected; "" when it is
+
+    def summary(self):
+        run = (self.results or {}).get("run") or {}
+        return {"variant": self.variant, "folder": str(self.folder), "command": shlex.join(self.command),
+                "exit_code": self.exit_code, "expect_exit": self.expect_exit, "wall_seconds": self.wall_seconds,
+                "cycles": run.get("cycles"), "stop_reason": run.get("stop_reason"),
+                "software": software_of(self.results) if self.results is not None else None,
+                "message": self.failure}
+
+
+def run_folder(out, problem_id, run):
+    folder = Path(out) / "runs" / problem_id
+    return folder / run.name if run.name else folder
+
+
+def _exit_meaning(code):
+    if code is not None and code < 0:
+        return f"killed by signal {-code}"
+    return EXIT_MEANINGS.get(code, "unknown exit code")
+
+
+def _last_line(text):
+    lines = [line for line in (text or "").splitlines() if line.strip()]
+    return lines[-1].strip() if lines else ""
+
+
+def _text(stream):
+    return stream.decode(errors="replace") if isinstance(stream, bytes) else (stream or "")
+
+
+def execute(problem, run, vdec, out):
+    """One run of vdec; never raises: anything that goes wrong is in the outcome's failure."""
+    folder = run_folder(out, problem.id, run)
+    command = [str(vdec), "run", str(problem.scene), "--out", str(folder)]
+    for override in run.overrides:
+        command += ["--set", override]
+    outcome = RunOutcome(run.name, command, folder, run.expect_exit)
     start = time.monotonic()
     try:
-        runs = {}
-        for variant in problem.variants:
-            code, stderr, results = _run_variant(problem, variant, vdec, out)
-            runs[variant.name] = (code, results)
-            record["cycles"] += int(results.get("run", {}).get("cycles", 0))
-            record["scene_sha256"] = results.get("scene", {}).get("sha256", record["scene_sha256"])
-            record["software"] = record["software"] or results.get("software")
-            record["exit_code"] = code
-            if code != variant.expect_exit:
-                raise ProblemError(f"variant '{variant.name or 'default'}' exited {code}, expected "
-                                   f"{variant.expect_exit}: {stderr.splitlines()[-1] if stderr else ''}")
-        for check in problem.checks:
-            code, results = runs[check.variant]
-            numerical = extract(results, code, check.extract)
-            reference = reference_value(check.reference, numerical)
-            metric = evaluate(check, numerical, reference)
-            record["metrics"].append(metric)
-            if isinstance(numerical, tuple):
-                record["plots"].append({"quantity": check.quantity, "x": numerical[0].tolist(),
-                                        "numerical": numerical[1].tolist(),
-                                        "reference": (np.asarray(reference) * np.ones_like(numerical[1])).tolist()})
-        record["status"] = "pass" if all(m["pass"] for m in record["metrics"]) else "fail"
-        failing = [m["quantity"] for m in record["metrics"] if not m["pass"]]
-        record["message"] = "" if not failing else "failed: " + "; ".join(failing)
-    except (ProblemError, subprocess.TimeoutExpired, KeyError, ValueError) as e:
-        record["status"] = "invalid" if isinstance(e, ProblemError) and "identical" in str(e) else "fail"
-        record["message"] = str(e)
-    record["wall_seconds"] = time.monotonic() - start
+        folder.mkdir(parents=True, exist_ok=True)
+        for name in RUN_FILES:  # a stale results.json must not pass for this run's
+            (folder / name).unlink(missing_ok=True)
+        (folder / "command.txt").write_text(shlex.join(command) + "\n")
+        try:
+            completed = subprocess.run(command, capture_output=True, text=True, timeout=problem.timeout_seconds,
+                                       stdin=subprocess.DEVNULL)
+            stdout, stderr = completed.stdout, completed.stderr
+            outcome.exit_code = completed.returncode
+        except subprocess.TimeoutExpired as e:
+            stdout, stderr = _text(e.stdout), _text(e.stderr)
+            outcome.failure = f"timed out after {problem.timeout_seconds:g} s (timeout_seconds) and was stopped"
+        except OSError as e:
+            stdout, stderr = "", ""
+            outcome.failure = f"cannot start {vdec}: {e}"
+        outcome.wall_seconds = time.monotonic() - start
+        (folder / "stdout.txt").write_text(stdout)
+        (folder / "stderr.txt").write_text(stderr)
+        results_path = folder / "results.json"
+        if results_path.is_file():
+            try:
+                results = json.loads(results_path.read_text())
+            except (OSError, ValueError) as e:
+                results = None
+                outcome.failure = outcome.failure or f"results.json is not readable JSON: {e}"
+            if isinstance(results, dict) and results.get("schema") != RESULTS_SCHEMA:
+                outcome.failure = outcome.failure or (f"results.json has schema {results.get('schema')!r}, "
+                                                      f"not {RESULTS_SCHEMA}")
+                results = None
+            outcome.results = results if isinstance(results, dict) else None
+        if not outcome.failure and outcome.exit_code != run.expect_exit:
+            outcome.failure = (f"exited {outcome.exit_code} ({_exit_meaning(outcome.exit_code)}), expected "
+                               f"{run.expect_exit} ({_exit_meaning(run.expect_exit)})")
+            diagnostic = _last_line(stderr)
+            if diagnostic:
+                outcome.failure += f": {diagnostic}"
+        if not outcome.failure and run.expect_exit == 0 and outcome.results is None:
+            outcome.failure = "exited 0 but wrote no results.json"
+    except Exception as e:  # e.g. the output folder cannot be written: report it, keep the suite going
+        outcome.failure = outcome.failure or f"harness error running {problem.id}: {type(e).__name__}: {e}"
+        outcome.wall_seconds = time.monotonic() - start
+    return outcome
+
+
+def _plot_data(numerical, reference, comparison, check):
+    if isinstance(numerical, Series):
+        return {"kind": "series", "x": numerical.x, "numerical": numerical.y, "reference": reference,
+                "x_label": numerical.x_label, "y_label": numerical.y_label}
+    return {"kind": "scalar", "numerical": comparison.numerical, "reference": comparison.reference,
+            "norm": check.norm, "allowed": check.atol + check.rtol * comparison.scale}
+
+
+def unevaluated_metric(check, message=""):
+    """A check's metric before (or instead of) its evaluation: failing, with no numbers."""
+    return {"quantity": check.quantity, "variant": check.variant or None, "extract": check.extract["kind"],
+            "norm": check.norm, "rtol": check.rtol, "atol": check.atol, "error": None, "tolerance": None,
+            "pass": False, "numerical": None, "reference": None, "justification": check.justification,
+            "message": message}
+
+
+def judge_check(check, outcome):
+    """The metric of one check against its run; raises ReferenceProblem for an unusable reference."""
+    metric = unevaluated_metric(check)
+    try:
+        numerical = extract(check.extract, outcome.results, outcome.exit_code)
+    except ExtractError as e:
+        metric["message"] = f"cannot extract: {e}"
+        return metric
+    function = find_reference_function(check.reference.function_name) if check.reference.function_name else None
+    reference = evaluate_reference(check.reference, numerical, function)
+    comparison = compare(check.norm, numerical, reference, check.rtol, check.atol)
+    metric.update(error=comparison.error, tolerance=comparison.tolerance, numerical=comparison.numerical,
+                  reference=comparison.reference, **{"pass": comparison.passed})
+    if isinstance(numerical, Series):
+        metric["message"] = f"{check.norm} norms of {numerical.y.size} samples"
+    if not math.isfinite(comparison.error):
+        metric["message"] = "the numerical value is not finite (NaN or infinity)"
+    metric["plot"] = _plot_data(numerical, reference, comparison, check)
+    return metric
+
+
+def judge(entry, outcomes):
+    """The record of one problem (see report.write_summary for the fields kept)."""
+    record = {"id": entry.id, "title": entry.title, "requirements": list(entry.requirements), "level": None,
+              "status": "invalid", "metrics": [], "runs": [], "wall_seconds": 0.0, "cycles": 0, "scene_sha256": "",
+              "exit_code": None, "message": entry.error, "messages": entry.error.splitlines()}
+    problem = entry.problem
+    if problem is None:
+        return record
+    record.update(title=problem.title, requirements=problem.requirements, level=problem.level)
+    ordered = [outcomes[run.name] for run in problem.runs]
+    record["runs"] = [o.summary() for o in ordered]
+    record["wall_seconds"] = sum(o.wall_seconds for o in ordered)
+    record["cycles"] = sum(int(((o.results or {}).get("run") or {}).get("cycles") or 0) for o in ordered)
+    record["exit_code"] = ordered[0].exit_code
+    shas = [((o.results or {}).get("scene") or {}).get("sha256") for o in ordered]
+    record["scene_sha256"] = next((s for s in shas if s), None) or hashlib.sha256(problem.scene.read_bytes()).hexdigest()
+
+    messages = [f"run {o.variant}: {o.failure}" if o.variant else o.failure for o in ordered if o.failure]
+    invalid = False
+    for check in problem.checks:
+        try:
+            metric = judge_check(check, outcomes[check.variant])
+        except (ReferenceProblem, LookupError) as e:
+            invalid = True
+            metric = unevaluated_metric(check, f"invalid reference: {e}")
+            messages.append(f"check {check.index + 1}: {e}")
+        except Exception as e:  # a harness fault on odd data: report it against this check, not the suite
+            metric = unevaluated_metric(check, f"harness error: {type(e).__name__}: {e}")
+        record["metrics"].append(metric)
+    failing = [m for m in record["metrics"] if not m["pass"]]
+    if invalid:
+        record["status"] = "invalid"
+    elif failing or any(o.failure for o in ordered):
+        record["status"] = "fail"
+    else:
+        record["status"] = "pass"
+    for m in failing:
+        if m["message"].startswith("invalid reference"):
+            continue
+        why = m["message"] if m["error"] is None else f"error {m['error']:.3g} > tolerance {m['tolerance']:.3g}"
+        messages.append(f"failed: {m['quantity']} ({why})")
+    record["messages"] = messages
+    record["message"] = "; ".join(messages)
     return record
 
 
-def run_all(entries, vdec, out, jobs):
+def _progress(text):
+    print(text, file=sys.stderr, flush=True)
+
+
+def run_suite(entries, vdec, out, jobs=2, progress=_progress):
+    """Runs every run of every valid entry (jobs at a time) and returns the records sorted by id."""
+    out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
+    work = [(entry, run) for entry in entries if entry.problem is not None for run in entry.problem.runs]
+    outcomes = {}
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        records = list(pool.map(lambda e: run_problem(e, vdec, out), entries))
-    return sorted(records, key=lambda r: r["id"])
+        futures = {pool.submit(execute, entry.problem, run, vdec, out): (entry.id, run.name) for entry, run in work}
+        for done, future in enumerate(as_completed(futures), start=1):
+            key = futures[future]
+            outcome = future.result()
+            outcomes[key] = outcome
+            if progress:
+                ended = "did not finish" if outcome.exit_code is None else f"exit {outcome.exit_code}"
+                progress(f"[{done}/{len(work)}] {key[0]}{'/' + key[1] if key[1] else ''}: {ended} in "
+                         f"{outcome.wall_seconds:.2f} s, {outcome.failure or 'as expected'}")
+    records = []
+    for entry in sorted(entries, key=lambda e: e.id):
+        mine = {name: outcome for (problem_id, name), outcome in outcomes.items() if problem_id == entry.id}
+        records.append(judge(entry, mine))
+    return records
+

@@ -1,0 +1,346 @@
+"""Tests of the traceability audit (qa/traceability/audit.py).
+
+Each test copies the clean fixture repository tests/python/fixtures/audit/clean into tmp_path,
+breaks one link, runs the audit and looks for the gap. The clean fixture has one component
+(docs with the ten NUREG-0856 subsections), three requirements, one verification problem, a
+summary.json and two JUnit files (GoogleTest and pytest, with a parametrized case).
+"""
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+import audit
+
+FIXTURE = Path(__file__).parent / "fixtures" / "audit" / "clean"
+AUDIT = Path(audit.__file__)
+REQS = "qa/traceability/requirements.toml"
+DOCS = "docs/models/widget.md"
+SUMMARY = "reports/verification/summary.json"
+GTEST = "reports/tests/gtest-unit.xml"
+PYTEST = "reports/tests/pytest.xml"
+PROBLEM = "verification/problems/WID-SWING/problem.toml"
+
+pytestmark = pytest.mark.requirements("REQ-QA-004")
+
+
+@pytest.fixture
+def repo(tmp_path):
+    root = tmp_path / "repo"
+    shutil.copytree(FIXTURE, root)
+    return root
+
+
+def edit(root, rel, old, new, count=1):
+    """Replace text in a fixture file, insisting the text is there (a silent no-op would make
+    a gap test pass for the wrong reason)."""
+    path = root / rel
+    text = path.read_text()
+    assert text.count(old) >= count, f"{old!r} not in {rel}"
+    path.write_text(text.replace(old, new, count))
+
+
+def run(root, capsys, *extra):
+    code = audit.main(["--root", str(root), *extra])
+    out = capsys.readouterr()
+    return code, out.out + out.err
+
+
+def gaps_of(root, capsys, *extra):
+    """Run the audit, expect failure, and return the full gap list from rtm.html."""
+    code, out = run(root, capsys, *extra)
+    assert code == 1, out
+    assert "audit: FAIL (" in out
+    page = (root / "reports/traceability/rtm.html").read_text()
+    return out, page
+
+
+def test_clean_fixture_passes_and_writes_both_reports(repo, capsys):
+    code, out = run(repo, capsys)
+    assert code == 0, out
+    assert out.rstrip().splitlines()[-1] == "audit: PASS (3 requirements, 1 problems, 5 tests, 0 gaps)"
+    rows = (repo / "reports/traceability/rtm.csv").read_text().splitlines()
+    assert rows[0] == "requirement,component,text,source,docs,code,evidence_kind,evidence_id,status"
+    assert len(rows) == 1 + 5
+    assert all(row.endswith(",pass") for row in rows[1:])
+    assert any(",problem,WID-SWING,pass" in row for row in rows)
+    # The parametrized pytest case is listed under its base name.
+    assert any(",test,pytest:test_widget.test_step_sizes,pass" in row for row in rows)
+    page = (repo / "reports/traceability/rtm.html").read_text()
+    assert "<h2>Gaps</h2><ul><li>none</li></ul>" in page
+    assert "REQ-WIDGET-001" in page and "Derivation of the numerical method" in page
+    assert "1111111111111111111111111111111111111111" in page     # the summary's commit is stated
+    assert "<link" not in page and "<script" not in page          # self-contained
+
+
+def test_command_line_exit_codes_and_speed(repo, tmp_path):
+    start = time.monotonic()
+    ok = subprocess.run([sys.executable, str(AUDIT), "--root", str(repo), "--out", str(tmp_path / "o")],
+                        capture_output=True, text=True)
+    assert ok.returncode == 0, ok.stdout + ok.stderr
+    assert (tmp_path / "o/rtm.csv").is_file() and (tmp_path / "o/rtm.html").is_file()
+    edit(repo, SUMMARY, '"status": "pass"', '"status": "fail"')
+    bad = subprocess.run([sys.executable, str(AUDIT), "--root", str(repo)], capture_output=True, text=True)
+    assert bad.returncode == 1
+    assert "audit: FAIL (" in bad.stdout
+    assert time.monotonic() - start < 10
+
+
+def test_unreadable_requirements_file_is_an_input_error_naming_file_and_line(repo, capsys):
+    edit(repo, REQS, 'title = "Widget model"', 'title = "Widget model')
+    code, out = run(repo, capsys)
+    assert code == 2
+    assert "requirements.toml" in out and "line 5" in out
+    assert not (repo / "reports/traceability/rtm.csv").exists()
+
+
+def test_missing_requirements_file_is_an_input_error(repo, capsys):
+    code, out = run(repo, capsys, "--requirements", str(repo / "nope.toml"))
+    assert code == 2 and "nope.toml" in out
+
+
+# ------------------------------------------------------------ requirement gaps
+
+REQ1_DOCS = 'docs = "docs/models/widget.md#law-of-swing"'
+
+REQUIREMENT_GAPS = {
+    "bad id": ('id = "REQ-WIDGET-001"', 'id = "REQ-Widget-1"', "REQ-Widget-1: bad id"),
+    "duplicate id": ('id = "REQ-WIDGET-002"', 'id = "REQ-WIDGET-001"', "REQ-WIDGET-001: duplicate id"),
+    # Case and white space are folded before comparing texts.
+    "duplicate text": ('"The widget time step is FRAC 2 sqrt(m / k)."',
+                       '"the widget  SWINGS by the central-difference law."',
+                       "REQ-WIDGET-002: same text as REQ-WIDGET-001"),
+    "empty source": ('source = "NUREG/CR-5429 1.3-10"', 'source = "  "', "REQ-WIDGET-001: no source"),
+    "unknown component": ('component = "widget"', 'component = "gadget"',
+                          "REQ-WIDGET-001: unknown component 'gadget'"),
+    "docs file missing": (REQ1_DOCS, 'docs = "docs/models/gadget.md#law-of-swing"',
+                          "REQ-WIDGET-001: docs file docs/models/gadget.md does not exist"),
+    "docs anchor missing": (REQ1_DOCS, 'docs = "docs/models/widget.md#law-of-motion"',
+                            "REQ-WIDGET-001: docs anchor #law-of-motion not found"),
+    "code file missing": ('code = ["src/widget.cpp", ', 'code = ["src/gadget.cpp", ',
+                          "REQ-WIDGET-001: code file src/gadget.cpp does not exist"),
+    "code symbol missing": ('"src/widget.cpp:swingWidget"', '"src/widget.cpp:swingGadget"',
+                            "REQ-WIDGET-001: symbol 'swingGadget' not found in src/widget.cpp"),
+    # A symbol must occur as a whole word, not inside a longer name.
+    "code symbol only as part of a name": ('"src/widget.cpp:swingWidget"', '"src/widget.cpp:swingWid"',
+                                           "REQ-WIDGET-001: symbol 'swingWid' not found"),
+    "problem does not exist": ('problems = ["WID-SWING"]', 'problems = ["WID-SWING", "WID-NONE"]',
+                               "REQ-WIDGET-001: problem WID-NONE does not exist"),
+    "test not in the results": ('tests = ["gtest:Widget.SwingsByCentralDifference"]',
+                                'tests = ["gtest:Widget.SwingsByCentralDifference", "gtest:Widget.Missing"]',
+                                "REQ-WIDGET-001: test gtest:Widget.Missing not found in the test results"),
+    "test does not name the requirement": (
+        'tests = ["pytest:test_widget.test_known_values"]',
+        'tests = ["pytest:test_widget.test_known_values", "gtest:Widget.TimeStep"]',
+        "REQ-QA-001: test gtest:Widget.TimeStep does not name it"),
+    "no evidence listed": ('tests = ["pytest:test_widget.test_known_values"]', 'tests = []',
+                           "REQ-QA-001: no evidence"),
+}
+
+
+@pytest.mark.parametrize("old,new,gap", REQUIREMENT_GAPS.values(), ids=REQUIREMENT_GAPS.keys())
+def test_requirement_gap_is_detected(repo, capsys, old, new, gap):
+    edit(repo, REQS, old, new)
+    out, page = gaps_of(repo, capsys)
+    assert gap in out
+
+
+def test_problem_that_does_not_list_the_requirement_back(repo, capsys):
+    edit(repo, PROBLEM, 'requirements = ["REQ-WIDGET-001"]', 'requirements = ["REQ-WIDGET-002"]')
+    out, _ = gaps_of(repo, capsys)
+    assert "REQ-WIDGET-001: problem WID-SWING does not list it" in out
+
+
+def test_requirement_whose_only_evidence_failed(repo, capsys):
+    # REQ-QA-001's only evidence is one pytest case; make it fail.
+    edit(repo, PYTEST, 'name="test_known_values" file="tests/python/test_widget.py" line="8" time="0.001">',
+         'name="test_known_values" file="tests/python/test_widget.py" line="8" time="0.001">'
+         '<failure message="assert 1 == 2">assert 1 == 2</failure>')
+    out, page = gaps_of(repo, capsys)
+    assert "REQ-QA-001: no passing evidence" in out
+    assert "test pytest:test_widget.test_known_values: failed (REQ-QA-001)" in out
+    rows = (repo / "reports/traceability/rtm.csv").read_text().splitlines()
+    assert any(r.startswith("REQ-QA-001,") and r.endswith(",test,pytest:test_widget.test_known_values,fail")
+               for r in rows)
+
+
+def test_requirement_whose_only_problem_failed(repo, capsys):
+    edit(repo, REQS, 'tests = ["gtest:Widget.SwingsByCentralDifference"]', "tests = []")
+    edit(repo, SUMMARY, '"status": "pass"', '"status": "invalid"')
+    out, _ = gaps_of(repo, capsys)
+    assert "REQ-WIDGET-001: no passing evidence" in out
+    assert "problem WID-SWING: status invalid in summary.json (REQ-WIDGET-001)" in out
+    assert "REQ-WIDGET-001,widget" in (repo / "reports/traceability/rtm.csv").read_text()
+
+
+def test_one_failed_instance_fails_a_parametrized_test(repo, capsys):
+    edit(repo, PYTEST, 'name="test_step_sizes[0.5]" file="tests/python/test_widget.py" line="20" time="0.001">',
+         'name="test_step_sizes[0.5]" file="tests/python/test_widget.py" line="20" time="0.001">'
+         '<failure message="x">x</failure>')
+    edit(repo, REQS, '"gtest:Widget.TimeStep", ', "")
+    out, _ = gaps_of(repo, capsys)
+    assert "test pytest:test_widget.test_step_sizes[0.5]: failed (REQ-WIDGET-002)" in out
+    assert "REQ-WIDGET-002: no passing evidence" in out
+    assert ",test,pytest:test_widget.test_step_sizes,fail" in (repo / "reports/traceability/rtm.csv").read_text()
+
+
+def test_skipped_test_is_not_passing_evidence(repo, capsys):
+    edit(repo, PYTEST, 'line="8" time="0.001">', 'line="8" time="0.001"><skipped message="no data"/>')
+    out, _ = gaps_of(repo, capsys)
+    assert "REQ-QA-001: no passing evidence" in out
+    assert "warning: test pytest:test_widget.test_known_values was skipped" in out
+    assert ",test,pytest:test_widget.test_known_values,not run" in (repo / "reports/traceability/rtm.csv").read_text()
+
+
+# ------------------------------------------------------------ problem gaps
+
+@pytest.mark.parametrize("old,new,gap", [
+    ('requirements = ["REQ-WIDGET-001"]', "requirements = []", "problem WID-SWING: names no requirement"),
+    ('requirements = ["REQ-WIDGET-001"]', 'requirements = ["REQ-WIDGET-001", "REQ-WIDGET-009"]',
+     "problem WID-SWING: names requirement REQ-WIDGET-009, which does not exist"),
+], ids=["names no requirement", "names a nonexistent requirement"])
+def test_problem_gap_is_detected(repo, capsys, old, new, gap):
+    edit(repo, PROBLEM, old, new)
+    out, _ = gaps_of(repo, capsys)
+    assert gap in out
+
+
+def test_problem_missing_from_summary_is_not_run(repo, capsys):
+    folder = repo / "verification/problems/WID-EXTRA"
+    folder.mkdir()
+    (folder / "problem.toml").write_text('id = "WID-EXTRA"\nrequirements = ["REQ-WIDGET-001"]\nlevel = "full"\n')
+    edit(repo, REQS, 'problems = ["WID-SWING"]', 'problems = ["WID-SWING", "WID-EXTRA"]')
+    out, _ = gaps_of(repo, capsys)
+    assert "problem WID-EXTRA: not in summary.json: not run (level = 'full')" in out
+    assert ",problem,WID-EXTRA,not run" in (repo / "reports/traceability/rtm.csv").read_text()
+
+
+# ------------------------------------------------------------ test gaps
+
+def test_test_naming_no_requirement(repo, capsys):
+    edit(repo, GTEST, """
+      <properties>
+        <property name="requirements" value="REQ-WIDGET-002"/>
+      </properties>""", "")
+    out, _ = gaps_of(repo, capsys)
+    assert "test gtest:Widget.TimeStep: names no requirement" in out
+    assert "REQ-WIDGET-002: test gtest:Widget.TimeStep does not name it" in out
+
+
+def test_test_naming_a_nonexistent_requirement(repo, capsys):
+    edit(repo, GTEST, 'value="REQ-WIDGET-002"', 'value="REQ-WIDGET-002, REQ-WIDGET-077"')
+    out, _ = gaps_of(repo, capsys)
+    assert "test gtest:Widget.TimeStep: names requirement REQ-WIDGET-077, which does not exist" in out
+
+
+def test_failed_gtest_is_reported_against_its_requirements(repo, capsys):
+    edit(repo, GTEST, 'line="12" status="run" result="completed" time="0" classname="Widget">',
+         'line="12" status="run" result="completed" time="0" classname="Widget">'
+         '<failure message="Expected equality" type=""/>')
+    out, page = gaps_of(repo, capsys)
+    assert "test gtest:Widget.TimeStep: failed (REQ-WIDGET-002)" in out
+    # REQ-WIDGET-002 still has a passing pytest case, so the failure is its only gap there.
+    assert "REQ-WIDGET-002: no passing evidence" not in out
+    assert "<span class='gap'>1 gap</span>" in page
+
+
+# ------------------------------------------------------------ component gaps
+
+@pytest.mark.parametrize("heading", ["## 1. Purpose", "## 2. Assumptions and limitations", "## 3. Notation",
+                                     "## 4. Derivation", "## 5. Application", "## 6. Numerical method type",
+                                     "## 7. Derivation of the numerical method", "## 8. Location in the code",
+                                     "## 9. Numerical stability and accuracy",
+                                     "## 10. Alternatives {#custom-anchor}"],
+                         ids=lambda h: h.split(". ", 1)[1].split(" {#")[0])
+def test_missing_docs_subsection(repo, capsys, heading):
+    # Demote the heading to plain text so the section's words stay but the heading is gone.
+    edit(repo, DOCS, heading + "\n", heading.lstrip("# ").split(" {#")[0] + " (not a heading)\n")
+    edit(repo, REQS, "#custom-anchor", "#widget-step")     # keep requirement anchors valid
+    out, page = gaps_of(repo, capsys)
+    name = heading.split(". ", 1)[1].split(" {#")[0]
+    assert f"component widget: {DOCS} lacks the subsection '{name}'" in out
+    assert out.count("lacks the subsection") == 1     # "Derivation" and its numerical twin stay distinct
+
+
+def test_empty_docs_subsection(repo, capsys):
+    edit(repo, DOCS, "Rigid widget.\n", "")
+    out, page = gaps_of(repo, capsys)
+    assert "component widget: docs/models/widget.md line 7: empty report section '2. Assumptions and limitations'" \
+        in out
+    assert "Assumptions and limitations: <span class='gap'>empty</span>" in page
+
+
+def test_section_with_an_empty_subsection_only_is_empty_too(repo, capsys):
+    edit(repo, DOCS, "v(t + dt/2) = v(t - dt/2) + a dt.\n", "<!-- to do -->\n")
+    out, _ = gaps_of(repo, capsys)
+    assert "empty report section 'Law of swing'" in out
+    assert "empty report section '7. Derivation of the numerical method'" in out
+
+
+def test_component_docs_file_missing(repo, capsys):
+    edit(repo, REQS, 'docs = "docs/models/widget.md"\n', 'docs = "docs/models/gadget.md"\n')
+    out, _ = gaps_of(repo, capsys)
+    assert "component widget: docs file docs/models/gadget.md does not exist" in out
+
+
+def test_component_with_no_requirement(repo, capsys):
+    edit(repo, REQS, '[[requirement]]', '[[component]]\nid = "spare"\ntitle = "Spare"\n'
+         'docs = "docs/models/widget.md"\n\n[[requirement]]')
+    out, _ = gaps_of(repo, capsys)
+    assert "component spare: no requirement names this component" in out
+
+
+# ------------------------------------------------------------ summary and commits
+
+@pytest.mark.parametrize("content", [None, '{"schema": "vdec.verification/0", "problems": []}', "{not json"],
+                         ids=["missing", "wrong schema", "unreadable"])
+def test_summary_missing_or_wrong_schema(repo, capsys, content):
+    if content is None:
+        (repo / SUMMARY).unlink()
+    else:
+        (repo / SUMMARY).write_text(content)
+    out, page = gaps_of(repo, capsys)
+    assert "verification summary: reports/verification/summary.json" in out
+    assert ",problem,WID-SWING,not run" in (repo / "reports/traceability/rtm.csv").read_text()
+
+
+def test_summary_from_another_commit_is_a_warning_not_a_gap(repo, capsys):
+    git = ["git", "-C", str(repo), "-c", "user.name=t", "-c", "user.email=t@t", "-c", "commit.gpgsign=false"]
+    subprocess.run(git + ["init", "-q"], check=True)
+    subprocess.run(git + ["add", "-A"], check=True)
+    subprocess.run(git + ["commit", "-qm", "fixture"], check=True)
+    head = subprocess.run(git + ["rev-parse", "HEAD"], capture_output=True, text=True, check=True).stdout.strip()
+    code, out = run(repo, capsys)
+    assert code == 0, out
+    assert f"warning: summary.json software.git_commit 1111111111111111111111111111111111111111 differs from " \
+           f"HEAD {head}" in out
+    edit(repo, SUMMARY, "1111111111111111111111111111111111111111", head, count=2)
+    code, out = run(repo, capsys)
+    assert code == 0 and "differs from HEAD" not in out
+
+
+def test_junit_glob_option_and_unmatched_glob(repo, capsys):
+    # Only the GoogleTest file: the pytest ids are then missing.
+    out, _ = gaps_of(repo, capsys, "--junit", str(repo / "reports/tests/gtest*.xml"))
+    assert "REQ-QA-001: test pytest:test_widget.test_known_values not found in the test results" in out
+    out, _ = gaps_of(repo, capsys, "--junit", str(repo / "nothing/*.xml"))
+    assert "no JUnit XML file matches" in out
+
+
+# ------------------------------------------------------------ Markdown details
+
+def test_anchors_follow_github_slugs_and_explicit_ids():
+    text = ("# Title\n## Coulomb slip (model 2)\nx\n## Coulomb slip (model 2)\ny\n"
+            "## Time step {#dt}\nz\n<a id=\"here\"></a>\n```\n## Not a heading\n```\n")
+    anchors = audit.markdown_anchors(text)
+    assert {"title", "coulomb-slip-model-2", "coulomb-slip-model-2-1", "time-step", "dt", "here"} <= anchors
+    assert "not-a-heading" not in anchors
+
+
+def test_subsection_names_ignore_case_and_numbering():
+    assert audit.subsection_key("3.2. DERIVATION (of the model)") == "derivation of the model"
+    assert audit.subsection_key("Location (in the code)") == "location in the code"
+    assert audit.subsection_key("a) Assumptions & Limitations") == "assumptions and limitations"

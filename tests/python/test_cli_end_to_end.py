@@ -1,0 +1,85 @@
+"""The vdec executable end to end: exit codes, diagnostics and repeatable results."""
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+VDEC = os.environ.get("VDEC_EXECUTABLE", str(ROOT / "build" / "vdec"))
+SCENE = (ROOT / "verification/problems/RB-STABILITY-FRAC/scene.toml").read_text()
+
+pytestmark = pytest.mark.skipif(not Path(VDEC).is_file(), reason="vdec is not built")
+
+
+def run(tmp_path, text, *extra, name="scene.toml"):
+    scene = tmp_path / name
+    scene.write_text(text)
+    out = tmp_path / "out"
+    done = subprocess.run([VDEC, "run", str(scene), "--out", str(out), *extra], capture_output=True, text=True,
+                          timeout=120)
+    results = json.loads((out / "results.json").read_text()) if (out / "results.json").is_file() else None
+    return done, results
+
+
+@pytest.mark.requirements("REQ-RUN-002")
+def test_second_run_of_the_same_scene_gives_identical_results(tmp_path):
+    _, first = run(tmp_path, SCENE, "--set", "stop.time=0.5")
+    _, second = run(tmp_path, SCENE, "--set", "stop.time=0.5")
+    for r in (first, second):
+        for key in ("wall_seconds", "setup_seconds", "stage_seconds"):
+            r["run"].pop(key)
+    assert first == second
+    assert first["histories"]["energy_ratio"]["value"]
+
+
+@pytest.mark.requirements("REQ-IO-001")
+def test_results_record_provenance_and_the_scene_hash(tmp_path):
+    import hashlib
+    done, results = run(tmp_path, SCENE)
+    assert done.returncode == 0, done.stderr
+    assert results["schema"] == "vdec.results/1"
+    for key in ("version", "git_commit", "build_type", "compiler"):
+        assert results["software"][key]
+    assert results["scene"]["sha256"] == hashlib.sha256(SCENE.encode()).hexdigest()
+    assert results["run"]["stages"] == ["contact-detection", "contact-forces", "rigid-block-motion", "histories"]
+
+
+@pytest.mark.requirements("REQ-IO-002")
+def test_bad_scene_exits_3_naming_file_line_and_key(tmp_path):
+    text = SCENE.replace("friction = 30.0", "frictoin = 30.0")
+    line = text.splitlines().index("frictoin = 30.0") + 1
+    done, _ = run(tmp_path, text, name="bad.toml")
+    assert done.returncode == 3
+    assert f"bad.toml:{line}: key 'joint_material[0].frictoin': unknown key" in done.stderr
+
+
+@pytest.mark.requirements("REQ-GEOM-002")
+def test_invalid_polygon_exits_4_naming_the_block(tmp_path):
+    text = SCENE.replace("[[-0.5, 0.0], [0.5, 0.0], [0.5, 1.0], [-0.5, 1.0]]",
+                         "[[-0.5, 0.0], [0.5, 1.0], [0.5, 0.0], [-0.5, 1.0]]")
+    done, _ = run(tmp_path, text)
+    assert done.returncode == 4
+    assert "block 'top'" in done.stderr and "self-intersecting" in done.stderr
+
+
+@pytest.mark.requirements("REQ-MOTION-005")
+def test_unstable_time_step_exits_5_and_says_what_to_change(tmp_path):
+    done, results = run(tmp_path, SCENE, "--set", "solver.frac=1.8")
+    assert done.returncode == 5
+    assert "lower solver.frac" in done.stderr
+    assert results["run"]["stop_reason"] == "error" and results["run"]["exit_code"] == 5
+
+
+@pytest.mark.requirements("REQ-CONTACT-003")
+def test_overlap_beyond_half_the_rounding_length_exits_6_naming_the_contact(tmp_path):
+    done, _ = run(tmp_path, SCENE.replace("kn = 1e8", "kn = 1e5"))
+    assert done.returncode == 6
+    assert "block 'top' on block 'base'" in done.stderr and "raise the joint stiffness kn" in done.stderr
+
+
+@pytest.mark.requirements("REQ-IO-003")
+def test_usage_error_exits_2(tmp_path):
+    done = subprocess.run([VDEC, "run"], capture_output=True, text=True)
+    assert done.returncode == 2

@@ -1,0 +1,132 @@
+"""Extractors of the verification harness on synthetic results with known answers (REQ-QA-001)."""
+import math
+
+import numpy as np
+import pytest
+
+from vdec_verify.extract import ExtractError, Series, extract, peaks_above
+
+
+def results_with(**histories):
+    """A results dict whose histories are NAME=(t, value)."""
+    return {"schema": "vdec.results/1",
+            "run": {"cycles": 120, "dt": 1e-3, "nested": {"value": 2.5}, "stop_reason": "time"},
+            "energy": {"largest_excess": 0.125},
+            "histories": {name: {"t": list(map(float, t)), "value": list(map(float, v))}
+                          for name, (t, v) in histories.items()}}
+
+
+T = np.linspace(0.0, 1.0, 11)
+RAMP = results_with(h=(T, 10.0 * T + 1.0))
+
+
+@pytest.mark.requirements("REQ-QA-001")
+@pytest.mark.parametrize("table, expected", [
+    ({"kind": "final", "history": "h"}, 11.0),
+    ({"kind": "max", "history": "h"}, 11.0),
+    ({"kind": "max", "history": "h", "window": [0.2, 0.5]}, 6.0),
+    ({"kind": "min", "history": "h", "window": [0.2, 0.5]}, 3.0),
+    ({"kind": "mean", "history": "h", "window": [0.2, 0.5]}, 4.5),
+    ({"kind": "mean", "history": "h"}, 6.0),
+    ({"kind": "value_at", "history": "h", "t": 0.25}, 3.5),
+    ({"kind": "slope", "history": "h", "window": [0.3, 0.9]}, 10.0),
+    ({"kind": "run_meta", "path": "run.cycles"}, 120.0),
+    ({"kind": "run_meta", "path": "run.nested.value"}, 2.5),
+    ({"kind": "run_meta", "path": "energy.largest_excess"}, 0.125),
+])
+def test_scalar_extractors(table, expected):
+    assert extract(table, RAMP, 0) == pytest.approx(expected, rel=1e-12)
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_fit_t2_returns_the_coefficient_of_t_squared_from_the_window_start_or_t0():
+    t = np.linspace(0.0, 2.0, 201)
+    results = results_with(x=(t, 3.0 + 2.0 * (t - 0.5) ** 2))
+    assert extract({"kind": "fit_t2", "history": "x", "window": [0.5, 1.5]}, results, 0) == pytest.approx(2.0, rel=1e-12)
+    assert extract({"kind": "fit_t2", "history": "x", "t0": 0.5}, results, 0) == pytest.approx(2.0, rel=1e-12)
+    # Without t0 the fit is about the first sample, t = 0, where the curve is not a pure t^2.
+    assert extract({"kind": "fit_t2", "history": "x"}, results, 0) != pytest.approx(2.0, rel=1e-3)
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_period_from_upward_crossings_with_interpolation():
+    t = np.linspace(0.0, 1.0, 1001)
+    results = results_with(y=(t, 5.0 + np.sin(2.0 * np.pi * t / 0.3 + 0.4)))
+    assert extract({"kind": "period", "history": "y"}, results, 0) == pytest.approx(0.3, rel=1e-4)
+    assert extract({"kind": "period", "history": "y", "level": 5.5}, results, 0) == pytest.approx(0.3, rel=1e-4)
+    with pytest.raises(ExtractError, match="a period needs at least two crossings"):
+        extract({"kind": "period", "history": "y", "window": [0.0, 0.2]}, results, 0)
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_log_decrement_of_a_damped_oscillation():
+    a, wd = 3.0, 2.0 * np.pi * 5.0
+    t = np.linspace(0.0, 4.0, 80001)
+    results = results_with(y=(t, 7.0 + np.exp(-a * t) * np.cos(wd * t)))
+    # Peaks of e^{-a t} cos(wd t) one damped period apart have the ratio e^{a 2 pi / wd}.
+    expected = a * 2.0 * np.pi / wd
+    table = {"kind": "log_decrement", "history": "y", "window": [0.0, 1.0]}
+    assert extract(dict(table, level=7.0), results, 0) == pytest.approx(expected, rel=1e-4)
+    # The default level is the history's final value, 7 + e^-12, even though the window ends at 1 s.
+    assert extract(table, results, 0) == pytest.approx(expected, rel=1e-3)
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_peaks_ignore_excursions_cut_by_the_window_and_noise_within_one():
+    # Starts inside an excursion (cut: not a peak); the second excursion has two local maxima.
+    value = np.array([3.0, 2.0, -1.0, 1.0, 2.0, 1.5, 1.8, -1.0, 1.0, -1.0, 0.5])
+    assert peaks_above(value, 0.0).tolist() == [2.0, 1.0]
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_history_and_curve_return_series():
+    t = np.linspace(0.0, 1.0, 11)
+    results = results_with(x=(t, 2.0 * t), y=(t, t ** 2))
+    series = extract({"kind": "history", "history": "y", "window": [0.5, 1.0]}, results, 0)
+    assert isinstance(series, Series)
+    assert series.x.tolist() == pytest.approx([0.5, 0.6, 0.7, 0.8, 0.9, 1.0])
+    curve = extract({"kind": "curve", "x": "x", "y": "y", "window": [0.0, 0.5]}, results, 0)
+    assert curve.x.tolist() == pytest.approx(2.0 * t[:6])
+    assert curve.y.tolist() == pytest.approx(t[:6] ** 2)
+    assert (curve.x_label, curve.y_label) == ("x", "y")
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_curve_puts_y_on_the_sample_times_of_x_without_extrapolating():
+    tx = np.array([0.0, 0.1, 0.2, 0.3, 0.4])
+    ty = np.array([0.05, 0.15, 0.25, 0.35])      # sampled half a step later
+    results = results_with(x=(tx, 10.0 * tx), y=(ty, 4.0 * ty))
+    curve = extract({"kind": "curve", "x": "x", "y": "y"}, results, 0)
+    # x samples at 0.0 and 0.4 lie outside y's span and are dropped, not extrapolated.
+    assert curve.x.tolist() == pytest.approx([1.0, 2.0, 3.0])
+    assert curve.y.tolist() == pytest.approx([0.4, 0.8, 1.2])
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_exit_code_needs_no_results():
+    assert extract({"kind": "exit_code"}, None, 5) == 5.0
+    with pytest.raises(ExtractError, match="did not finish"):
+        extract({"kind": "exit_code"}, None, None)
+
+
+@pytest.mark.requirements("REQ-QA-001")
+@pytest.mark.parametrize("table, results, phrase", [
+    ({"kind": "final", "history": "nope"}, RAMP, "no history 'nope' .*they have: h"),
+    ({"kind": "final", "history": "h"}, None, "wrote no results.json"),
+    ({"kind": "max", "history": "h", "window": [2.0, 3.0]}, RAMP, "no samples in the window"),
+    ({"kind": "value_at", "history": "h", "t": 1.5}, RAMP, "outside the sampled times"),
+    ({"kind": "run_meta", "path": "energy.nope"}, RAMP, "no field 'energy.nope'"),
+    ({"kind": "run_meta", "path": "run.stop_reason"}, RAMP, "not a number"),
+    ({"kind": "fit_t2", "history": "h", "window": [0.0, 0.1]}, RAMP, "at least three samples"),
+    ({"kind": "log_decrement", "history": "h"}, RAMP, "needs at least two"),
+    ({"kind": "final", "history": "bad"}, {"histories": {"bad": {"t": [0, 1], "value": [1]}}}, "t has 2 samples"),
+])
+def test_extraction_failures_say_what_is_missing(table, results, phrase):
+    with pytest.raises(ExtractError, match=phrase):
+        extract(table, results, 0)
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_nan_in_a_history_is_passed_on_not_hidden():
+    results = results_with(h=(T, np.where(T > 0.5, math.nan, T)))
+    assert math.isnan(extract({"kind": "final", "history": "h"}, results, 0))

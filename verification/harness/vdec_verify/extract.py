@@ -1,0 +1,230 @@
+"""Extractors: what a check reads from one run of vdec.
+
+Each extractor takes the run's results dict (results.json) and the check's extract table and
+returns a scalar (float) or a Series (x, y arrays) compared point by point with the reference.
+Histories are results["histories"][NAME] = {"t": [...], "value": [...]}. An optional
+window = [t0, t1] keeps the samples with t0 <= t <= t1.
+
+    kind           keys (optional in brackets)        returns
+    final          history                            last value
+    max, min, mean history [window]                   over the (windowed) history
+    value_at       history, t                         value interpolated linearly at time t
+    history        history [window]                   Series (t, value); reference f(t, **params)
+    curve          x, y [window]                      Series (x, y) of two histories; reference f(x, **params)
+    fit_t2         history [window] [t0]              s of the least-squares fit value = c0 + s (t - t0)^2,
+                                                      t0 = the given t0, else the window start, else the first time
+    slope          history [window]                   least-squares slope of value against t
+    period         history [window] [level]           mean period between successive upward crossings of
+                                                      level (default: the mean of the windowed values)
+    log_decrement  history [window] [level]           mean of ln(p_k / p_k+1) over successive peaks p_k of
+                                                      value - level above level (one per period; default
+                                                      level: the final value of the whole history)
+    run_meta       path                               a number at a dotted path in results["run"] or
+                                                      results["energy"], e.g. "energy.largest_excess"
+    exit_code      (none)                             the exit code of the run
+"""
+from dataclasses import dataclass
+
+import numpy as np
+
+
+class ExtractError(Exception):
+    """The run's output does not hold what the check asks for."""
+
+
+@dataclass(frozen=True)
+class Series:
+    x: np.ndarray
+    y: np.ndarray
+    x_label: str
+    y_label: str
+
+
+def read_history(results, name):
+    histories = results.get("histories") or {}
+    if name not in histories:
+        raise ExtractError(f"the results have no history '{name}' (they have: {', '.join(sorted(histories)) or 'none'})")
+    try:
+        t = np.asarray(histories[name]["t"], dtype=float)
+        value = np.asarray(histories[name]["value"], dtype=float)
+    except (KeyError, TypeError, ValueError) as e:
+        raise ExtractError(f"history '{name}' is not a {{t: [...], value: [...]}} pair of number lists ({e})") from e
+    if t.ndim != 1 or t.shape != value.shape:
+        raise ExtractError(f"history '{name}': t has {t.size} samples but value has {value.size}")
+    return t, value
+
+
+def _windowed(t, value, window, name):
+    if window is not None:
+        keep = (t >= window[0]) & (t <= window[1])
+        t, value = t[keep], value[keep]
+    if t.size == 0:
+        raise ExtractError(f"history '{name}' has no samples in the window {window}")
+    return t, value
+
+
+def _history_in_window(results, table):
+    name = table["history"]
+    t, value = read_history(results, name)
+    return _windowed(t, value, table.get("window"), name)
+
+
+def final(results, table):
+    _, value = _history_in_window(results, table)
+    return float(value[-1])
+
+
+def maximum(results, table):
+    return float(np.max(_history_in_window(results, table)[1]))
+
+
+def minimum(results, table):
+    return float(np.min(_history_in_window(results, table)[1]))
+
+
+def mean(results, table):
+    return float(np.mean(_history_in_window(results, table)[1]))
+
+
+def value_at(results, table):
+    name = table["history"]
+    t, value = read_history(results, name)
+    when = float(table["t"])
+    if t.size == 0 or not t[0] <= when <= t[-1]:
+        span = f"[{t[0]}, {t[-1]}]" if t.size else "(no samples)"
+        raise ExtractError(f"history '{name}': t = {when} is outside the sampled times {span}")
+    return float(np.interp(when, t, value))
+
+
+def history(results, table):
+    t, value = _history_in_window(results, table)
+    return Series(t, value, "t", table["history"])
+
+
+def curve(results, table):
+    tx, x = read_history(results, table["x"])
+    ty, y = read_history(results, table["y"])
+    if tx.shape != ty.shape or np.any(tx != ty):
+        # Histories of different subjects may be sampled at different times (block positions at
+        # the end of a step, joint measures at its start): put y on x's sample times, and keep
+        # only the times inside y's sampled span so that nothing is extrapolated.
+        inside = (tx >= ty[0]) & (tx <= ty[-1]) if ty.size else np.zeros_like(tx, dtype=bool)
+        tx, x = tx[inside], x[inside]
+        y = np.interp(tx, ty, y)
+    window = table.get("window")
+    keep = np.ones(tx.shape, dtype=bool) if window is None else (tx >= window[0]) & (tx <= window[1])
+    if not keep.any():
+        raise ExtractError(f"histories '{table['x']}' and '{table['y']}' have no common samples in the window {window}")
+    return Series(x[keep], y[keep], table["x"], table["y"])
+
+
+def fit_t2(results, table):
+    t, value = _history_in_window(results, table)
+    window = table.get("window")
+    t0 = float(table["t0"]) if "t0" in table else (float(window[0]) if window else float(t[0]))
+    squared = (t - t0) ** 2
+    if t.size < 3 or np.ptp(squared) == 0.0:
+        raise ExtractError(f"history '{table['history']}': fit_t2 needs at least three samples at distinct |t - t0|")
+    design = np.column_stack([np.ones_like(squared), squared])
+    coefficients, *_ = np.linalg.lstsq(design, value, rcond=None)
+    return float(coefficients[1])
+
+
+def slope(results, table):
+    t, value = _history_in_window(results, table)
+    if t.size < 2 or np.ptp(t) == 0.0:
+        raise ExtractError(f"history '{table['history']}': a slope needs at least two samples at distinct times")
+    return float(np.polyfit(t, value, 1)[0])
+
+
+def upward_crossings(t, value, level):
+    """Times where value rises through level, linearly interpolated between samples."""
+    above = value - level
+    i = np.nonzero((above[:-1] < 0.0) & (above[1:] >= 0.0))[0]
+    return t[i] - above[i] * (t[i + 1] - t[i]) / (above[i + 1] - above[i])
+
+
+def period(results, table):
+    t, value = _history_in_window(results, table)
+    level = float(table.get("level", np.mean(value)))
+    crossings = upward_crossings(t, value, level)
+    if crossings.size < 2:
+        raise ExtractError(f"history '{table['history']}' crosses {level:g} upward {crossings.size} times; "
+                           "a period needs at least two crossings")
+    return float(np.mean(np.diff(crossings)))
+
+
+def peaks_above(value, level):
+    """The largest value - level in each excursion above level that lies wholly inside the
+    samples (bounded by samples at or below level on both sides), so a lobe cut by the window
+    does not pass for a peak, and sampling noise inside one lobe gives one peak, not several."""
+    above = value - level
+    peaks, start = [], None
+    for i, a in enumerate(above):
+        if a > 0.0 and start is None:
+            start = i
+        elif a <= 0.0 and start is not None:
+            if start > 0:
+                peaks.append(float(np.max(above[start:i])))
+            start = None
+    return np.asarray(peaks)
+
+
+def log_decrement(results, table):
+    t, value = _history_in_window(results, table)
+    # By default the oscillation is about the history's final value (its settled state), even
+    # when the window ends earlier.
+    level = float(table.get("level", read_history(results, table["history"])[1][-1]))
+    peaks = peaks_above(value, level)
+    if peaks.size < 2:
+        raise ExtractError(f"history '{table['history']}' has {peaks.size} complete excursions above {level:g}; "
+                           "a logarithmic decrement needs at least two")
+    return float(np.mean(np.log(peaks[:-1] / peaks[1:])))
+
+
+def run_meta(results, table):
+    node = results
+    for part in table["path"].split("."):
+        if not isinstance(node, dict) or part not in node:
+            raise ExtractError(f"the results have no field '{table['path']}' (missing '{part}')")
+        node = node[part]
+    if isinstance(node, bool) or not isinstance(node, (int, float)):
+        raise ExtractError(f"results field '{table['path']}' is {node!r}, not a number")
+    return float(node)
+
+
+@dataclass(frozen=True)
+class Kind:
+    function: object
+    required: tuple
+    optional: tuple
+    series: bool  # True: returns a Series, compared with the L2 or Linf norm
+
+
+KINDS = {
+    "final": Kind(final, ("history",), (), False),
+    "max": Kind(maximum, ("history",), ("window",), False),
+    "min": Kind(minimum, ("history",), ("window",), False),
+    "mean": Kind(mean, ("history",), ("window",), False),
+    "value_at": Kind(value_at, ("history", "t"), (), False),
+    "history": Kind(history, ("history",), ("window",), True),
+    "curve": Kind(curve, ("x", "y"), ("window",), True),
+    "fit_t2": Kind(fit_t2, ("history",), ("window", "t0"), False),
+    "slope": Kind(slope, ("history",), ("window",), False),
+    "period": Kind(period, ("history",), ("window", "level"), False),
+    "log_decrement": Kind(log_decrement, ("history",), ("window", "level"), False),
+    "run_meta": Kind(run_meta, ("path",), (), False),
+    "exit_code": Kind(None, (), (), False),
+}
+
+
+def extract(table, results, exit_code):
+    """The value a check compares: a float or a Series. results is None when the run wrote none."""
+    kind = table["kind"]
+    if kind == "exit_code":
+        if exit_code is None:
+            raise ExtractError("the run has no exit code (it did not finish)")
+        return float(exit_code)
+    if results is None:
+        raise ExtractError("the run wrote no results.json")
+    return KINDS[kind].function(results, table)
