@@ -63,7 +63,7 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     if (!c.open) {
       totals.strainEnergy += 0.5 * (c.normalForce * c.normalForce / (j.kn * weight) +
                                     c.shearForce * c.shearForce / (j.ks * weight));
-      totals.sumForceMagnitude += std::hypot(c.normalForce, c.shearForce);
+      totals.sumForceMagnitude += std::sqrt(c.normalForce * c.normalForce + c.shearForce * c.shearForce);
       ++totals.closedContacts;
     }
   }

@@ -8,20 +8,7 @@ namespace vdec {
 
 namespace {
 
-int nextVertex(const Model& m, int v) {
-  const int b = m.vertices.block[v];
-  const int first = m.blocks.firstVertex[b], n = m.blocks.vertexCount[b];
-  return first + (v - first + 1) % n;
-}
-int prevVertex(const Model& m, int v) {
-  const int b = m.vertices.block[v];
-  const int first = m.blocks.firstVertex[b], n = m.blocks.vertexCount[b];
-  return first + (v - first + n - 1) % n;
-}
-Vec2 outwardNormal(Vec2 a, Vec2 b) {
-  const Vec2 e = normalized(b - a);
-  return {e.y, -e.x};  // right of the edge direction: outside for a counter-clockwise polygon
-}
+Vec2 outward(Vec2 edgeDirection) { return {edgeDirection.y, -edgeDirection.x}; }  // right of the edge
 
 // Feature index within block B: 2k = corner k, 2k + 1 = edge k (from vertex k to k+1).
 struct Evaluation {
@@ -30,37 +17,37 @@ struct Evaluation {
 };
 
 Evaluation evaluate(const Model& m, int blockB, int localFeature, Vec2 centre, double radius) {
-  const int first = m.blocks.firstVertex[blockB], n = m.blocks.vertexCount[blockB];
-  const int k = localFeature / 2;
-  const int v = first + k;
-  const auto& pos = m.vertices.position;
+  const Vertices& vx = m.vertices;
+  const int v = m.blocks.firstVertex[blockB] + localFeature / 2;
   Evaluation out;
   if (localFeature % 2 == 1) {
-    const Vec2 a = pos[v], b = pos[first + (k + 1) % n];
-    const double length = norm(b - a);
-    const Vec2 e = (1.0 / length) * (b - a);
-    const Vec2 nOut{e.y, -e.x};
+    const Vec2 a = vx.position[v], e = vx.edgeDirection[v];
+    const Vec2 nOut = outward(e);
     const double d = m.roundingLength;
     const double s = dot(centre - a, e);
-    if (s < d) out.step = -1;
-    else if (s > length - d) out.step = +1;
+    // Regions overlap by a sliver of round-off so that a centre exactly on a boundary (blocks
+    // meeting at a grid point) belongs to both neighbours, never to neither.
+    const double slack = 1e-9 * d;
+    if (s < d - slack) out.step = -1;
+    else if (s > vx.edgeLength[v] - d + slack) out.step = +1;
     const double h = dot(centre - a, nOut);
     out.hit = {v, FeatureKind::Edge, nOut, centre - (0.5 * (radius + h)) * nOut, radius - h};
     return out;
   }
-  const Vec2 o = m.vertices.arcCentre[v];
-  const double rB = m.vertices.arcRadius[v];
+  const Vec2 o = vx.arcCentre[v];
+  const double rB = vx.arcRadius[v];
   const Vec2 w = centre - o;
   const double dist = norm(w);
-  const Vec2 nPrev = outwardNormal(pos[first + (k + n - 1) % n], pos[v]);
-  const Vec2 nNext = outwardNormal(pos[v], pos[first + (k + 1) % n]);
-  if (dist <= 0.0) {
-    out.hit = {v, FeatureKind::Corner, normalized(nPrev + nNext), o, std::numeric_limits<double>::infinity()};
+  const Vec2 nPrev = outward(vx.edgeDirection[vx.prev[v]]);
+  const Vec2 nNext = outward(vx.edgeDirection[v]);
+  if (dist <= 0.0) {  // concentric arcs: as deep as two corners can go; any normal will do
+    out.hit = {v, FeatureKind::Corner, normalized(nPrev + nNext), o, radius + rB};
     return out;
   }
   const Vec2 u = (1.0 / dist) * w;
-  if (cross(nPrev, u) < 0.0) out.step = -1;
-  else if (cross(u, nNext) < 0.0) out.step = +1;
+  constexpr double slack = 1e-12;  // unit vectors: as for the edges, boundaries belong to both
+  if (cross(nPrev, u) < -slack) out.step = -1;
+  else if (cross(u, nNext) < -slack) out.step = +1;
   const Vec2 surfaceB = o + rB * u, surfaceA = centre - radius * u;
   out.hit = {v, FeatureKind::Corner, u, 0.5 * (surfaceA + surfaceB), radius + rB - dist};
   return out;
@@ -72,32 +59,48 @@ int localIndex(const Model& m, int blockB, int feature, FeatureKind kind) {
 
 }  // namespace
 
-void computeCornerArcs(Model& m) {
+void computeBoundaryGeometry(Model& m) {
   const double d = m.roundingLength;
-  auto& vx = m.vertices;
-  vx.localArcCentre.resize(vx.size());
-  vx.arcCentre.resize(vx.size());
-  vx.arcRadius.resize(vx.size());
-  for (int v = 0; v < vx.size(); ++v) {
-    const Vec2 here = vx.localPosition[v];
-    const Vec2 toPrev = normalized(vx.localPosition[prevVertex(m, v)] - here);
-    const Vec2 toNext = normalized(vx.localPosition[nextVertex(m, v)] - here);
-    const double cosAlpha = std::clamp(dot(toPrev, toNext), -1.0, 1.0);
-    const double halfAlpha = 0.5 * std::acos(cosAlpha);  // alpha: interior angle
-    const Vec2 bisector = normalized(toPrev + toNext);
+  Vertices& vx = m.vertices;
+  const int count = vx.size();
+  vx.next.resize(count);
+  vx.prev.resize(count);
+  vx.localEdgeDirection.resize(count);
+  vx.edgeDirection.resize(count);
+  vx.edgeLength.resize(count);
+  vx.localArcCentre.resize(count);
+  vx.arcCentre.resize(count);
+  vx.arcRadius.resize(count);
+  for (int b = 0; b < m.blocks.size(); ++b) {
+    const int first = m.blocks.firstVertex[b], n = m.blocks.vertexCount[b];
+    for (int k = 0; k < n; ++k) {
+      vx.next[first + k] = first + (k + 1) % n;
+      vx.prev[first + k] = first + (k + n - 1) % n;
+    }
+  }
+  for (int v = 0; v < count; ++v) {
+    const Vec2 edge = vx.localPosition[vx.next[v]] - vx.localPosition[v];
+    vx.edgeLength[v] = norm(edge);
+    vx.localEdgeDirection[v] = (1.0 / vx.edgeLength[v]) * edge;
+  }
+  for (int v = 0; v < count; ++v) {
+    const Vec2 toPrev = -vx.localEdgeDirection[vx.prev[v]];
+    const Vec2 toNext = vx.localEdgeDirection[v];
+    const double halfAlpha = 0.5 * std::acos(std::clamp(dot(toPrev, toNext), -1.0, 1.0));  // alpha: interior angle
     vx.arcRadius[v] = d * std::tan(halfAlpha);
-    vx.localArcCentre[v] = here + (d / std::cos(halfAlpha)) * bisector;
+    vx.localArcCentre[v] = vx.localPosition[v] + (d / std::cos(halfAlpha)) * normalized(toPrev + toNext);
   }
 }
 
 void placeBlockVertices(Model& m, int b) {
   const double c = std::cos(m.blocks.rotation[b]), s = std::sin(m.blocks.rotation[b]);
   const Vec2 centre = m.blocks.centroid[b];
-  auto& vx = m.vertices;
+  Vertices& vx = m.vertices;
   const int first = m.blocks.firstVertex[b], last = first + m.blocks.vertexCount[b];
   for (int v = first; v < last; ++v) {
     vx.position[v] = centre + rotated(vx.localPosition[v], c, s);
     vx.arcCentre[v] = centre + rotated(vx.localArcCentre[v], c, s);
+    vx.edgeDirection[v] = rotated(vx.localEdgeDirection[v], c, s);
   }
 }
 
@@ -106,17 +109,21 @@ FeatureHit nearestFeature(const Model& m, int corner, int blockB) {
   const double radius = m.vertices.arcRadius[corner];
   // Outside B exactly one feature's region holds the centre; inside (a sharp corner pressed in
   // further than its arc radius) several may, and the one with least overlap is the nearest.
-  FeatureHit best;
-  best.overlap = std::numeric_limits<double>::infinity();
-  bool found = false;
+  // A centre deep inside B may lie in no feature's region; then the nearest edge line serves.
+  FeatureHit best, nearestEdge;
+  bool found = false, edgeFound = false;
   for (int f = 0; f < 2 * m.blocks.vertexCount[blockB]; ++f) {
     const Evaluation e = evaluate(m, blockB, f, centre, radius);
     if (e.step == 0 && (!found || e.hit.overlap < best.overlap)) {
       best = e.hit;
       found = true;
     }
+    if (f % 2 == 1 && (!edgeFound || e.hit.overlap < nearestEdge.overlap)) {
+      nearestEdge = e.hit;
+      edgeFound = true;
+    }
   }
-  return best;
+  return found ? best : nearestEdge;
 }
 
 FeatureHit followFeature(const Model& m, int corner, int blockB, int feature, FeatureKind kind) {
@@ -143,12 +150,12 @@ double contactLength(const Model& m, int corner, const FeatureHit& hit) {
   double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
   if (hit.kind == FeatureKind::Edge) {
     const double s0 = dot(pos[hit.feature] - hit.point, along);
-    const double s1 = dot(pos[nextVertex(m, hit.feature)] - hit.point, along);
+    const double s1 = dot(pos[m.vertices.next[hit.feature]] - hit.point, along);
     lo = std::min(s0, s1);
     hi = std::max(s0, s1);
   }
   double length = 0.0;
-  for (const int other : {prevVertex(m, corner), nextVertex(m, corner)}) {
+  for (const int other : {m.vertices.prev[corner], m.vertices.next[corner]}) {
     const Vec2 far = pos[other];
     const double a = dot(here - hit.point, along), b = dot(far - hit.point, along);
     if (a == b) continue;

@@ -16,9 +16,10 @@ struct FeatureHit {
   double overlap = 0.0;            // positive when interpenetrating
 };
 
-// Arc radius and centre, in the block's local frame, for every corner (set-up time).
-void computeCornerArcs(Model& model);
-// World positions of vertices and arc centres from each block's rigid motion.
+// Set-up time: neighbour ids, edge directions and lengths, and every corner's arc radius and
+// centre in the block's local frame.
+void computeBoundaryGeometry(Model& model);
+// World positions of vertices, arc centres and edge directions from a block's rigid motion.
 void placeBlockVertices(Model& model, int block);
 
 // The feature of B nearest the corner, searching all of B's features.

@@ -69,6 +69,13 @@ struct Vertices {
   std::vector<Vec2> localArcCentre;
   std::vector<Vec2> arcCentre;
   std::vector<double> arcRadius;
+  // The boundary edge from each vertex to the next, kept with the positions so that contact
+  // geometry needs no square root or modulo per contact: neighbour ids, unit direction, length.
+  std::vector<int> next;
+  std::vector<int> prev;
+  std::vector<Vec2> localEdgeDirection;
+  std::vector<Vec2> edgeDirection;
+  std::vector<double> edgeLength;
 
   int size() const { return static_cast<int>(block.size()); }
 };

@@ -443,7 +443,7 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     validateBlockPolygon(in.polygon, m.roundingLength, in.where);
     addBlock(m, in);
   }
-  computeCornerArcs(m);
+  computeBoundaryGeometry(m);
   for (int b = 0; b < m.blocks.size(); ++b) placeBlockVertices(m, b);
 
   auto blockIndex = [&](TableReader& r, std::string_view key, const std::string& name) {
