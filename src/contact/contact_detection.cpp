@@ -94,40 +94,48 @@ void ContactDetection::scan(Model& m) {
   std::sort(found.begin(), found.end(),
             [](const Contact& a, const Contact& b) { return Key{a.corner, a.blockB} < Key{b.corner, b.blockB}; });
 
-  // Two touching corners can each see the other: keep one contact for the pair. A corner that
-  // sees the other corner yields to any contact that corner has on this block; of two mutual
-  // corner-corner contacts the one owned by the lower vertex id stays.
-  auto findFound = [&](int corner, int blockB) -> const Contact* {
-    auto it = std::lower_bound(found.begin(), found.end(), Key{corner, blockB},
+  // Two corners at one spot can each see the other: keep one contact for the pair. A corner
+  // that sees the other corner yields to that corner's contact on this block when the other
+  // corner sees an edge (it is the one pressed into a face) or another corner. Of two mutual
+  // corner-corner contacts the one that already exists stays, so that its state is kept; of two
+  // new ones, the one owned by the lower vertex id.
+  auto findIn = [](const std::vector<Contact>& list, int corner, int blockB) -> const Contact* {
+    auto it = std::lower_bound(list.begin(), list.end(), Key{corner, blockB},
                                [](const Contact& c, const Key& k) { return Key{c.corner, c.blockB} < k; });
-    return (it != found.end() && Key{it->corner, it->blockB} == Key{corner, blockB}) ? &*it : nullptr;
+    return (it != list.end() && Key{it->corner, it->blockB} == Key{corner, blockB}) ? &*it : nullptr;
   };
   std::vector<Contact> kept;
   kept.reserve(found.size());
   for (const Contact& c : found) {
     if (c.featureKind == FeatureKind::Corner) {
-      const Contact* reverse = findFound(c.feature, c.blockA);
-      if (reverse && (reverse->featureKind == FeatureKind::Edge || reverse->feature != c.corner || c.feature < c.corner))
-        continue;
+      const Contact* reverse = findIn(found, c.feature, c.blockA);
+      if (reverse) {
+        const bool mutual = reverse->featureKind == FeatureKind::Corner && reverse->feature == c.corner;
+        if (!mutual) continue;
+        const bool cExisted = findIn(previous, c.corner, c.blockB) != nullptr;
+        const bool reverseExisted = findIn(previous, reverse->corner, reverse->blockB) != nullptr;
+        if (cExisted != reverseExisted ? reverseExisted : reverse->corner < c.corner) continue;
+      }
     }
     kept.push_back(c);
   }
 
-  // Carry the state of contacts that persist; initialise the new ones.
+  // Carry the state of contacts that persist; initialise the new ones. A joint contact's
+  // stress is its spring's from zero overlap: stress-free where the faces touch, the stress of
+  // the face around it where it appears under load, open where found at a gap.
   const bool initial = m.cycle == 0;
   std::size_t p = 0;
   for (Contact& c : kept) {
     while (p < previous.size() && Key{previous[p].corner, previous[p].blockB} < Key{c.corner, c.blockB}) ++p;
     if (p < previous.size() && Key{previous[p].corner, previous[p].blockB} == Key{c.corner, c.blockB}) {
-      const Contact& old = previous[p];
-      c = old;
+      c = previous[p];
+      previous[p].slipDissipation = 0.0;  // carried, not deleted
       continue;
     }
     c.joint = m.jointMaterialFor(c.blockA, c.blockB);
     const JointMaterial& j = m.jointMaterials[c.joint];
-    const double weight = j.law == JointLaw::PointContact ? 1.0 : contactLength(m, c.corner, {c.feature, c.featureKind, c.normal, c.point, c.overlap});
-    // A contact found at a gap starts open, stress-free once the gap closes.
-    c.elasticNormal = j.kn * weight * c.overlap;
+    c.length = contactLength(m, c.corner, {c.feature, c.featureKind, c.normal, c.point, c.overlap});
+    c.elasticNormalStress = j.kn * c.overlap;
     c.open = c.overlap < 0.0;
     // Model #5: only contacts present at the start are bonded rock; faces that come together
     // later have no cohesion or tensile strength.
@@ -141,10 +149,11 @@ void ContactDetection::scan(Model& m) {
       throw GeometryError(s.str());
     }
     if (initial && c.overlap >= -touching) {
-      c.elasticNormal = 0.0;  // faces touching at the start: closed and stress-free
+      c.elasticNormalStress = 0.0;  // faces touching at the start: closed and stress-free
       c.open = false;
     }
   }
+  for (const Contact& old : previous) m.deletedSlipDissipation += old.slipDissipation;
   m.contacts = std::move(kept);
 }
 

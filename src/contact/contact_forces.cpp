@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "contact/contact_geometry.hpp"
 #include "core/errors.hpp"
@@ -21,6 +22,20 @@ namespace {
   throw OverlapError(s.str());
 }
 
+// The contact's feature on B for the blocks' new positions. A corner-corner contact whose other
+// corner has moved onto the face of A (the two corners slid past each other) becomes that
+// corner's contact on A's edge, keeping its state: stresses and displacements are the same
+// numbers seen from the other side (normal and tangent both reverse).
+FeatureHit trackFeature(const Model& m, Contact& c) {
+  const FeatureHit hit = followFeature(m, c.corner, c.blockB, c.feature, c.featureKind);
+  if (hit.kind != FeatureKind::Corner) return hit;
+  const FeatureHit reverse = followFeature(m, hit.feature, c.blockA, c.corner, FeatureKind::Corner);
+  if (reverse.kind != FeatureKind::Edge) return hit;
+  c.corner = hit.feature;
+  std::swap(c.blockA, c.blockB);
+  return reverse;
+}
+
 }  // namespace
 
 ContactStepTotals computeContactForces(Model& m, double dt) {
@@ -29,7 +44,7 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
   const double overlapLimit = 0.5 * m.roundingLength;
   for (std::size_t i = 0; i < m.contacts.size(); ++i) {
     Contact& c = m.contacts[i];
-    const FeatureHit hit = followFeature(m, c.corner, c.blockB, c.feature, c.featureKind);
+    const FeatureHit hit = trackFeature(m, c);
     const double dun = hit.overlap - c.overlap;  // closing positive
     c.feature = hit.feature;
     c.featureKind = hit.kind;
@@ -49,7 +64,9 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     const JointMaterial& j = m.jointMaterials[c.joint];
     c.length = contactLength(m, c.corner, hit);
     const double weight = j.law == JointLaw::PointContact ? 1.0 : c.length;
-    updateJointForces(j, c, weight, dun, dus);
+    c.slipDissipation += weight * updateJointStresses(j, c, dun, dus);
+    c.normalForce = weight * c.normalStress;
+    c.shearForce = weight * c.shearStress;
     c.normalDisplacement += dun;
     c.shearDisplacement += dus;
 
@@ -61,8 +78,7 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     bl.moment[b] -= cross(rb, f);
 
     if (!c.open) {
-      totals.strainEnergy += 0.5 * (c.normalForce * c.normalForce / (j.kn * weight) +
-                                    c.shearForce * c.shearForce / (j.ks * weight));
+      totals.strainEnergy += 0.5 * weight * (c.normalStress * c.normalStress / j.kn + c.shearStress * c.shearStress / j.ks);
       totals.sumForceMagnitude += std::sqrt(c.normalForce * c.normalForce + c.shearForce * c.shearForce);
       ++totals.closedContacts;
     }

@@ -110,11 +110,18 @@ FeatureHit nearestFeature(const Model& m, int corner, int blockB) {
   // Outside B exactly one feature's region holds the centre; inside (a sharp corner pressed in
   // further than its arc radius) several may, and the one with least overlap is the nearest.
   // A centre deep inside B may lie in no feature's region; then the nearest edge line serves.
+  // A centre on the boundary between an edge's region and a corner's (two blocks' corners
+  // meeting exactly) belongs to the corner: that is what lets contact detection see the two
+  // corners as one corner-corner contact rather than two corner-edge contacts on one spot.
+  const double tie = 1e-9 * m.roundingLength;
   FeatureHit best, nearestEdge;
   bool found = false, edgeFound = false;
   for (int f = 0; f < 2 * m.blocks.vertexCount[blockB]; ++f) {
     const Evaluation e = evaluate(m, blockB, f, centre, radius);
-    if (e.step == 0 && (!found || e.hit.overlap < best.overlap)) {
+    const bool nearer = !found || e.hit.overlap < best.overlap - tie ||
+                        (e.hit.kind == FeatureKind::Corner && best.kind == FeatureKind::Edge &&
+                         e.hit.overlap <= best.overlap + tie);
+    if (e.step == 0 && nearer) {
       best = e.hit;
       found = true;
     }
@@ -143,28 +150,30 @@ FeatureHit followFeature(const Model& m, int corner, int blockB, int feature, Fe
 }
 
 double contactLength(const Model& m, int corner, const FeatureHit& hit) {
-  const auto& pos = m.vertices.position;
-  const Vec2 here = pos[corner];
-  const Vec2 along = perp(hit.normal);
-  // The contacted surface line and, for an edge, its extent along `along`.
-  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
-  if (hit.kind == FeatureKind::Edge) {
-    const double s0 = dot(pos[hit.feature] - hit.point, along);
-    const double s1 = dot(pos[m.vertices.next[hit.feature]] - hit.point, along);
-    lo = std::min(s0, s1);
-    hi = std::max(s0, s1);
-  }
+  const Vertices& vx = m.vertices;
+  const Vec2 here = vx.position[corner];
+  // The edges of B the corner may share a face with: the contacted edge, or both edges of the
+  // contacted corner.
+  const int edgesOfB[2] = {hit.kind == FeatureKind::Edge ? hit.feature : vx.prev[hit.feature], hit.feature};
+  const int candidates = hit.kind == FeatureKind::Edge ? 1 : 2;
   double length = 0.0;
-  for (const int other : {m.vertices.prev[corner], m.vertices.next[corner]}) {
-    const Vec2 far = pos[other];
-    const double a = dot(here - hit.point, along), b = dot(far - hit.point, along);
-    if (a == b) continue;
-    const double c0 = std::clamp(a, lo, hi), c1 = std::clamp(b, lo, hi);
-    // Clipped far end, as a point of the edge.
-    const Vec2 clippedFar = here + ((c1 - a) / (b - a)) * (far - here);
-    const Vec2 clippedNear = here + ((c0 - a) / (b - a)) * (far - here);
-    const double gapAtFar = std::abs(dot(clippedFar - hit.point, hit.normal));
-    if (gapAtFar <= m.contactTolerance) length += 0.5 * norm(clippedFar - clippedNear);
+  for (const int other : {vx.prev[corner], vx.next[corner]}) {
+    const Vec2 far = vx.position[other];
+    double share = 0.0;
+    for (int k = 0; k < candidates; ++k) {
+      const int e = edgesOfB[k];
+      const Vec2 origin = vx.position[e], along = vx.edgeDirection[e], out = outward(along);
+      const double sHere = dot(here - origin, along), sFar = dot(far - origin, along);
+      if (sHere == sFar) continue;
+      // A's edge from `here` to `far`, clipped to B's edge; it shares the face when its clipped
+      // far end is within the contact tolerance of B's edge line.
+      const double c0 = std::clamp(sHere, 0.0, vx.edgeLength[e]), c1 = std::clamp(sFar, 0.0, vx.edgeLength[e]);
+      const double gapHere = dot(here - origin, out), gapFar = dot(far - origin, out);
+      const double gapAtClippedFar = gapHere + (gapFar - gapHere) * (c1 - sHere) / (sFar - sHere);
+      if (std::abs(gapAtClippedFar) > m.contactTolerance) continue;
+      share = std::max(share, 0.5 * std::abs(c1 - c0) * norm(far - here) / std::abs(sFar - sHere));
+    }
+    length += share;
   }
   return std::max(length, m.roundingLength);
 }

@@ -27,9 +27,10 @@ FeatureHit nearestFeature(const Model& model, int corner, int blockB);
 // The same, walking from a previous feature along B's boundary: what a contact does each step.
 FeatureHit followFeature(const Model& model, int corner, int blockB, int feature, FeatureKind kind);
 
-// Contact length (1.3-2, Fig. 1.3-2c): half of each edge adjacent to the corner that lies along
-// the contacted surface (its far end, clipped to B's edge, within the contact tolerance of the
-// surface line); the rounding length d for a corner touching alone.
+// Contact length (1.3-2, Fig. 1.3-2c): for each edge of A adjacent to the corner, half of the
+// part of it that shares a face with B (the edge clipped to B's contacted edge, or to either
+// edge of B's contacted corner, with its clipped far end within the contact tolerance of that
+// edge's line); the rounding length d for a corner touching alone.
 double contactLength(const Model& model, int corner, const FeatureHit& hit);
 
 }  // namespace vdec

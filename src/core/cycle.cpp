@@ -169,7 +169,7 @@ RunReport Cycle::run() {
   report.histories = histories_;
   energy_.kinetic = kineticEnergy_;
   energy_.strain = strainEnergy_;
-  energy_.slipDissipation = 0.0;
+  energy_.slipDissipation = model_.deletedSlipDissipation;
   for (const Contact& c : model_.contacts) energy_.slipDissipation += c.slipDissipation;
   report.energy = energy_;
   report.lastMonitors = monitors_;

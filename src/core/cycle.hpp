@@ -30,7 +30,7 @@ struct EnergyReport {
   double externalWork = 0.0;       // by gravity, applied loads and driven blocks
   double kinetic = 0.0;            // at the end
   double strain = 0.0;             // at the end
-  double slipDissipation = 0.0;    // at the end, summed over existing contacts
+  double slipDissipation = 0.0;    // by all contacts, existing and deleted
   double largestExcess = 0.0;      // max over the run of (kinetic + strain - supplied) / largest supplied
 };
 

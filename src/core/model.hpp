@@ -82,8 +82,9 @@ struct Vertices {
 
 enum class FeatureKind : std::uint8_t { Edge, Corner };
 
-// One corner of block A touching block B. Forces are stored (NUREG/CR-5429 1.4-136 is in
-// force form) so that a change of contact length changes stiffness, never the force itself.
+// One corner of block A touching block B. Joint laws carry stresses (1.4-132 to 1.4-136 in
+// the stress form of MODEL-EQUATIONS.md) and the forces are stress times contact length; for
+// the point-contact law the "stresses" are forces and L = 1.
 struct Contact {
   int corner = -1;          // vertex of block A
   int blockA = -1;
@@ -94,13 +95,15 @@ struct Contact {
   Vec2 normal;              // unit, from B towards A
   Vec2 point;               // where the force acts
   double overlap = 0.0;     // geometric, positive when the rounded shapes interpenetrate
-  double length = 0.0;      // contact length L (1.3-2); 1 for the point-contact law's weight
-  double elasticNormal = 0.0;  // normal force the elastic spring alone would carry (can be < 0)
-  double normalForce = 0.0;    // Fn, compression positive
-  double shearForce = 0.0;     // Fs, along tangent t = (n.y, -n.x)
-  double normalDisplacement = 0.0;  // accumulated, closing positive
-  double shearDisplacement = 0.0;   // accumulated, along t
-  double slipDissipation = 0.0;
+  double length = 0.0;      // contact length L (1.3-2), m
+  double elasticNormalStress = 0.0;  // what the normal spring alone would carry (< 0 in tension or open)
+  double normalStress = 0.0;         // sn, compression positive
+  double shearStress = 0.0;          // tau, along tangent t = (n.y, -n.x)
+  double normalForce = 0.0;          // Fn = sn L, N/m
+  double shearForce = 0.0;           // Fs = tau L
+  double normalDisplacement = 0.0;   // accumulated, closing positive
+  double shearDisplacement = 0.0;    // accumulated, along t
+  double slipDissipation = 0.0;      // J/m
   bool open = false;        // separated, or broken in tension and not closed again
   bool intact = true;       // model #5: cohesion and tensile strength not yet destroyed
   bool slipping = false;
@@ -112,6 +115,7 @@ struct Model {
   Blocks blocks;
   Vertices vertices;
   std::vector<Contact> contacts;
+  double deletedSlipDissipation = 0.0;  // J/m, by contacts that no longer exist
   // Joint material per unordered block pair where the scene assigns one; else defaultJoint.
   std::vector<std::pair<std::pair<int, int>, int>> jointAssignments;
   int defaultJoint = -1;

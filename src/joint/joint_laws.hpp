@@ -1,50 +1,55 @@
 #pragma once
-// Joint constitutive laws (NUREG/CR-5429 1.3-1 to 1.3-5, 1.4-132 to 1.4-136), in force form.
-// Sign convention: normal force compression positive, normal displacement closing positive;
-// shear force and displacement along the contact tangent.
+// Joint constitutive laws (NUREG/CR-5429 1.3-1 to 1.3-5, 1.4-132 to 1.4-136) in stress form:
+// a joint contact carries normal and shear stress, and its forces are stress times contact
+// length (Fn = sn L, Fs = tau L), so that where the length changes the stress stays continuous
+// and a contact made or re-made mid-run carries the stress of the face around it. The point-
+// contact law (#1) is the same update with forces and N/m stiffnesses, and L = 1.
+// Sign convention: normal stress compression positive, normal displacement closing positive;
+// shear stress and displacement along the contact tangent.
+#include <algorithm>
+#include <cmath>
+
 #include "core/model.hpp"
 
 namespace vdec {
 
-// Updates c.elasticNormal, c.normalForce, c.shearForce and the state flags for the
-// displacement increments (dun, dus) of one step. `weight` is the contact length L for the
-// joint laws (stiffness in Pa/m, strengths in Pa) and 1 for the point-contact law (N/m).
-inline void updateJointForces(const JointMaterial& j, Contact& c, double weight, double dun, double dus) {
+// Updates c.elasticNormalStress, c.normalStress, c.shearStress and the state flags for the
+// displacement increments (dun, dus) of one step. Returns the plastic work of the step per
+// unit contact length (times L it is the energy dissipated by slip).
+inline double updateJointStresses(const JointMaterial& j, Contact& c, double dun, double dus) {
   const bool fracture = j.law == JointLaw::CoulombFracture;
-  const bool strengthAvailable = !fracture || c.intact;
-  const bool pointContact = j.law == JointLaw::PointContact;
-  const double tensileLimit = (strengthAvailable && !pointContact) ? j.tension * weight : 0.0;
-  const double cohesion = (strengthAvailable && !pointContact) ? j.cohesion * weight : 0.0;
-  const double kn = j.kn * weight, ks = j.ks * weight;
+  const bool strengthAvailable = (!fracture || c.intact) && j.law != JointLaw::PointContact;
+  const double tensileLimit = strengthAvailable ? j.tension : 0.0;
+  const double cohesion = strengthAvailable ? j.cohesion : 0.0;
 
-  c.elasticNormal += kn * dun;  // 1.4-132 / 1.4-134
+  c.elasticNormalStress += j.kn * dun;  // 1.4-132 / 1.4-134
   if (c.open) {
-    if (c.elasticNormal >= 0.0) c.open = false;  // closed again where it was stress-free
-  } else if (c.elasticNormal < -tensileLimit) {
+    if (c.elasticNormalStress >= 0.0) c.open = false;  // closed again where it was stress-free
+  } else if (c.elasticNormalStress < -tensileLimit) {
     c.open = true;  // tensile failure or separation (1.3-4); #5 loses its strength for good
     if (fracture) c.intact = false;
   }
   c.slipping = false;
   if (c.open) {
-    c.normalForce = 0.0;
-    c.shearForce = 0.0;
-    return;
+    c.normalStress = 0.0;
+    c.shearStress = 0.0;
+    return 0.0;
   }
-  c.normalForce = c.elasticNormal;
-  const double strength = std::max(0.0, cohesion + c.normalForce * j.tanFriction);  // 1.3-5
-  const double trial = c.shearForce + ks * dus;
+  c.normalStress = c.elasticNormalStress;
+  const double strength = std::max(0.0, cohesion + c.normalStress * j.tanFriction);  // 1.3-5
+  const double trial = c.shearStress + j.ks * dus;
   if (std::abs(trial) <= strength) {
-    c.shearForce = trial;
-    return;
+    c.shearStress = trial;
+    return 0.0;
   }
   c.slipping = true;
-  const double slip = (std::abs(trial) - strength) / ks;  // plastic part of |dus|
-  c.shearForce = trial > 0.0 ? strength : -strength;
-  c.slipDissipation += strength * slip;
+  const double slip = (std::abs(trial) - strength) / j.ks;  // plastic part of |dus|
+  c.shearStress = trial > 0.0 ? strength : -strength;
   // Dilation (1.4-136): the joint tries to open as it slips; against a held normal
   // displacement that shows as added compression.
-  c.elasticNormal += kn * slip * j.tanDilation;
+  c.elasticNormalStress += j.kn * slip * j.tanDilation;
   if (fracture) c.intact = false;
+  return strength * slip;
 }
 
 }  // namespace vdec
