@@ -22,6 +22,20 @@ namespace {
   throw OverlapError(s.str());
 }
 
+// The edge of A adjacent to corner v whose region (not v's corner region, which wins ties) holds
+// the arc centre of B's corner w, or -1. The same regions as followFeature's, without a walk.
+int adjacentEdgeHolding(const Model& m, int v, int w) {
+  const Vertices& vx = m.vertices;
+  const double d = m.roundingLength, tie = 1e-9 * d;
+  const Vec2 centre = vx.arcCentre[w];
+  const double sAfter = dot(centre - vx.position[v], vx.edgeDirection[v]);  // on edge v -> next
+  if (sAfter > d + tie && sAfter <= vx.edgeLength[v] - d) return v;
+  const int before = vx.prev[v];  // edge prev -> v
+  const double sBefore = dot(centre - vx.position[before], vx.edgeDirection[before]);
+  if (sBefore < vx.edgeLength[before] - d - tie && sBefore >= d) return before;
+  return -1;
+}
+
 // The contact's feature on B for the blocks' new positions. A corner-corner contact whose other
 // corner has moved onto the face of A (the two corners slid past each other) becomes that
 // corner's contact on A's edge, keeping its state: stresses and displacements are the same
@@ -29,11 +43,12 @@ namespace {
 FeatureHit trackFeature(const Model& m, Contact& c) {
   const FeatureHit hit = followFeature(m, c.corner, c.blockB, c.feature, c.featureKind);
   if (hit.kind != FeatureKind::Corner) return hit;
-  const FeatureHit reverse = followFeature(m, hit.feature, c.blockA, c.corner, FeatureKind::Corner);
-  if (reverse.kind != FeatureKind::Edge) return hit;
-  c.corner = hit.feature;
+  const int edge = adjacentEdgeHolding(m, c.corner, hit.feature);
+  if (edge < 0) return hit;
+  const int w = hit.feature;
+  c.corner = w;
   std::swap(c.blockA, c.blockB);
-  return reverse;
+  return followFeature(m, w, c.blockB, edge, FeatureKind::Edge);
 }
 
 }  // namespace
@@ -62,9 +77,11 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     const double dus = dot(va - vb, tangent) * dt;
 
     const JointMaterial& j = m.jointMaterials[c.joint];
-    c.length = contactLength(m, c.corner, hit);
+    // The length matters only while the contact carries stress.
+    const double work = updateJointStresses(j, c, dun, dus);
+    if (!c.open) c.length = contactLength(m, c.corner, hit);
     const double weight = j.law == JointLaw::PointContact ? 1.0 : c.length;
-    c.slipDissipation += weight * updateJointStresses(j, c, dun, dus);
+    c.slipDissipation += weight * work;
     c.normalForce = weight * c.normalStress;
     c.shearForce = weight * c.shearStress;
     c.normalDisplacement += dun;

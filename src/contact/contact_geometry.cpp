@@ -157,8 +157,10 @@ double contactLength(const Model& m, int corner, const FeatureHit& hit) {
   const int edgesOfB[2] = {hit.kind == FeatureKind::Edge ? hit.feature : vx.prev[hit.feature], hit.feature};
   const int candidates = hit.kind == FeatureKind::Edge ? 1 : 2;
   double length = 0.0;
-  for (const int other : {vx.prev[corner], vx.next[corner]}) {
+  const int before = vx.prev[corner], after = vx.next[corner];
+  for (const int other : {before, after}) {
     const Vec2 far = vx.position[other];
+    const double edgeLength = vx.edgeLength[other == after ? corner : before];
     double share = 0.0;
     for (int k = 0; k < candidates; ++k) {
       const int e = edgesOfB[k];
@@ -171,7 +173,7 @@ double contactLength(const Model& m, int corner, const FeatureHit& hit) {
       const double gapHere = dot(here - origin, out), gapFar = dot(far - origin, out);
       const double gapAtClippedFar = gapHere + (gapFar - gapHere) * (c1 - sHere) / (sFar - sHere);
       if (std::abs(gapAtClippedFar) > m.contactTolerance) continue;
-      share = std::max(share, 0.5 * std::abs(c1 - c0) * norm(far - here) / std::abs(sFar - sHere));
+      share = std::max(share, 0.5 * std::abs(c1 - c0) * edgeLength / std::abs(sFar - sHere));
     }
     length += share;
   }

@@ -16,11 +16,11 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::BlockAngularVelocity, "block.angular_velocity", S::Block, "rad/s", "angular velocity"},
       {Q::JointNormalForce, "joint.normal_force", S::Joint, "N/m", "sum of contact normal forces, compression positive"},
       {Q::JointShearForce, "joint.shear_force", S::Joint, "N/m", "sum of contact shear forces"},
-      {Q::JointNormalStress, "joint.normal_stress", S::Joint, "Pa", "sum of normal forces / sum of contact lengths"},
-      {Q::JointShearStress, "joint.shear_stress", S::Joint, "Pa", "sum of shear forces / sum of contact lengths"},
+      {Q::JointNormalStress, "joint.normal_stress", S::Joint, "Pa", "sum of normal forces / joint.length"},
+      {Q::JointShearStress, "joint.shear_stress", S::Joint, "Pa", "sum of shear forces / joint.length"},
       {Q::JointNormalDisplacement, "joint.normal_displacement", S::Joint, "m", "mean accumulated normal displacement, closing positive"},
       {Q::JointShearDisplacement, "joint.shear_displacement", S::Joint, "m", "mean accumulated shear displacement"},
-      {Q::JointLength, "joint.length", S::Joint, "m", "sum of contact lengths"},
+      {Q::JointLength, "joint.length", S::Joint, "m", "sum of the lengths of closed contacts"},
       {Q::JointContacts, "joint.contacts", S::Joint, "-", "number of contacts"},
       {Q::UnbalancedRatio, "model.unbalanced_ratio", S::Model, "-", "largest unbalanced force / mean contact force"},
       {Q::LargestUnbalancedForce, "model.largest_unbalanced_force", S::Model, "N/m", "largest unbalanced force of a free block"},
@@ -54,7 +54,7 @@ double jointMeasure(const Model& m, const HistorySpec& h) {
     if (!between) continue;
     normalForce += c.normalForce;
     shearForce += c.shearForce;
-    length += c.length;
+    if (!c.open) length += c.length;
     un += c.normalDisplacement;
     us += c.shearDisplacement;
     ++count;

@@ -55,20 +55,19 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha) {
 }
 
 double rigidBlockTimeStep(const Model& m, double frac) {
-  // The smallest block that moves under forces; when every block is driven (a kinematic test),
-  // the smallest block, so that driven loading still advances in small increments.
-  double minMass = INFINITY, minDrivenMass = INFINITY;
+  // The smallest block that moves under forces, and l_typ the longest edge of such a block: the
+  // stiffness a face puts on a block is kn times the length shared, which no edge of that block
+  // exceeds, so a long fixed boundary block does not shorten the step. When every block is
+  // driven (a kinematic test), all blocks count, so that driven loading still advances in small
+  // increments.
+  bool anyFree = false;
+  for (int b = 0; b < m.blocks.size(); ++b) anyFree = anyFree || m.blocks.movesFreely(b);
+  double minMass = INFINITY, longestEdge = 0.0;
   for (int b = 0; b < m.blocks.size(); ++b) {
-    double& smallest = m.blocks.movesFreely(b) ? minMass : minDrivenMass;
-    smallest = std::min(smallest, m.blocks.mass[b]);
-  }
-  if (!std::isfinite(minMass)) minMass = minDrivenMass;
-  double longestEdge = 0.0;
-  for (int b = 0; b < m.blocks.size(); ++b) {
-    const int first = m.blocks.firstVertex[b], n = m.blocks.vertexCount[b];
-    for (int k = 0; k < n; ++k)
-      longestEdge = std::max(longestEdge, norm(m.vertices.localPosition[first + (k + 1) % n] -
-                                               m.vertices.localPosition[first + k]));
+    if (anyFree && !m.blocks.movesFreely(b)) continue;
+    minMass = std::min(minMass, m.blocks.mass[b]);
+    const int first = m.blocks.firstVertex[b], last = first + m.blocks.vertexCount[b];
+    for (int v = first; v < last; ++v) longestEdge = std::max(longestEdge, m.vertices.edgeLength[v]);
   }
   double maxStiffness = 0.0;
   for (const JointMaterial& j : m.jointMaterials) {
