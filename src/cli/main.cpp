@@ -36,6 +36,11 @@ int runScene(const std::string& scenePath, const std::string& outDir, const std:
     std::fprintf(stderr, "cycles %lld, contacts %zu, blocks %d, detection scans %d\n", report.cycles,
                  scene.model.contacts.size(), scene.model.blocks.size(), report.detectionScans);
   }
+  const double ratio = scene.settings.stop.ratio;
+  if (report.errorCode == 0 && ratio > 0 && report.stopReason != "ratio")
+    std::fprintf(stderr, "vdec: warning: stopped on %s before the unbalanced-force ratio fell to %g (last %.3e): "
+                 "the model may not be in equilibrium\n", report.stopReason.c_str(), ratio,
+                 report.lastMonitors.unbalancedRatio);
   if (report.errorCode != 0) {
     std::fprintf(stderr, "vdec: error: %s\n(results up to the failure written to %s/results.json)\n",
                  report.error.c_str(), outDir.c_str());

@@ -157,8 +157,38 @@ void ContactDetection::scan(Model& m) {
   m.contacts = std::move(kept);
 }
 
+namespace {
+
+// Whether an edge of block a crosses an edge of block b: each edge's end points lie strictly on
+// opposite sides of the other's line, by more than `touching`. Faces that touch, corners on
+// faces and corners on corners are not crossings. Two blocks laid across each other like a plus
+// sign overlap without a corner of either inside the other; this is what finds them.
+bool edgesCross(const Model& m, int a, int b, double touching) {
+  const Vertices& vx = m.vertices;
+  auto side = [&](int edge, Vec2 p) { return cross(vx.edgeDirection[edge], p - vx.position[edge]); };
+  const int firstA = m.blocks.firstVertex[a], lastA = firstA + m.blocks.vertexCount[a];
+  const int firstB = m.blocks.firstVertex[b], lastB = firstB + m.blocks.vertexCount[b];
+  for (int i = firstA; i < lastA; ++i) {
+    for (int j = firstB; j < lastB; ++j) {
+      const double b0 = side(i, vx.position[j]), b1 = side(i, vx.position[vx.next[j]]);
+      if (!((b0 > touching && b1 < -touching) || (b0 < -touching && b1 > touching))) continue;
+      const double a0 = side(j, vx.position[i]), a1 = side(j, vx.position[vx.next[i]]);
+      if ((a0 > touching && a1 < -touching) || (a0 < -touching && a1 > touching)) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 void ContactDetection::initialise(Model& m) {
   scan(m);
+  const double touching = 1e-6 * m.roundingLength;
+  for (const auto& [a, b] : candidatePairs(m)) {
+    if (!edgesCross(m, a, b, touching)) continue;
+    throw GeometryError("blocks '" + m.blocks.name[a] + "' and '" + m.blocks.name[b] +
+                        "' overlap at the start (their edges cross); move them apart so they at most touch");
+  }
 }
 
 void ContactDetection::update(Model& m, double largestStepDisplacement) {

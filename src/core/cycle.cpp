@@ -33,8 +33,12 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   for (int b = 0; b < model_.blocks.size(); ++b) {
     const Blocks& bl = model_.blocks;
     if (!bl.movesFreely(b)) continue;
-    energy_.initial += 0.5 * (bl.mass[b] * dot(bl.velocity[b], bl.velocity[b]) +
-                              bl.inertia[b] * bl.angularVelocity[b] * bl.angularVelocity[b]);
+    // Driven components are not counted: the kinetic energy the monitor measures is that of
+    // the free ones, and a driver's work enters as external work.
+    const Vec2 v = bl.velocity[b];
+    const double vx = (bl.driven[b] & DriveX) ? 0.0 : v.x, vy = (bl.driven[b] & DriveY) ? 0.0 : v.y;
+    const double w = (bl.driven[b] & DriveRotation) ? 0.0 : bl.angularVelocity[b];
+    energy_.initial += 0.5 * (bl.mass[b] * (vx * vx + vy * vy) + bl.inertia[b] * w * w);
     scale += (bl.mass[b] * norm(model_.gravity) + norm(bl.appliedForce[b])) * model_.roundingLength;
   }
   supplied_ = energy_.initial;

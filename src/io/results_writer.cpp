@@ -1,5 +1,9 @@
 #include "io/results_writer.hpp"
 
+#include <unistd.h>
+
+#include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -20,6 +24,19 @@ const char* jointLawName(JointLaw law) {
   return "?";
 }
 
+// Where and when the file was written: provenance that differs between two runs of one scene,
+// kept apart from the results so that comparing two runs can drop it in one place.
+nlohmann::json environment() {
+  char host[256] = {};
+  gethostname(host, sizeof host - 1);
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return {{"host", host}, {"written_utc", stamp}};
+}
+
 }  // namespace
 
 void writeResults(const std::string& dir, const Scene& scene, const RunReport& report, double setupSeconds) {
@@ -32,6 +49,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                    {"git_commit", build::gitCommit},
                    {"build_type", build::buildType},
                    {"compiler", build::compiler}};
+  j["environment"] = environment();
   j["scene"] = {{"path", scene.path}, {"sha256", scene.sha256}, {"overrides", scene.overrides}, {"title", scene.title}};
   json profile = json::object();
   for (const StageTiming& s : report.profile) profile[s.name] = s.seconds;

@@ -29,10 +29,17 @@ class TableReader {
 
   [[noreturn]] void fail(std::string_view key, const std::string& message) const {
     const toml::node* node = table_.get(key);
-    const auto line = node ? node->source().begin.line : table_.source().begin.line;
-    std::ostringstream s;
-    s << file_ << ":" << line << ": key '" << qualified(key) << "': " << message;
-    throw SceneError(s.str());
+    throw SceneError(where(node ? node->source() : table_.source()) + ": key '" + qualified(key) + "': " + message);
+  }
+  // An error about the table as a whole, e.g. a choice among keys none of which is there.
+  [[noreturn]] void failTable(const std::string& message) const {
+    throw SceneError(where(table_.source()) + ": [" + prefix_ + "]: " + message);
+  }
+  // file:line, or the --set override a value came from (its source path is the override text).
+  std::string where(const toml::source_region& source) const {
+    if (source.path && *source.path != file_) return file_ + ": " + *source.path;
+    if (source.begin.line == 0) return file_ + ": a table made by --set";
+    return file_ + ":" + std::to_string(source.begin.line);
   }
   std::string qualified(std::string_view key) const {
     return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
@@ -167,7 +174,7 @@ void applyOverride(toml::table& root, const std::string& text) {
   const std::string path = text.substr(0, eq);
   toml::table parsed;
   try {
-    parsed = toml::parse("value = " + text.substr(eq + 1));
+    parsed = toml::parse("value = " + text.substr(eq + 1), "--set '" + text + "'");
   } catch (const toml::parse_error& e) {
     throw SceneError("--set '" + text + "': the value is not valid TOML: " + std::string(e.description()));
   }
@@ -189,7 +196,7 @@ void applyOverride(toml::table& root, const std::string& text) {
     if (part.empty()) throw SceneError("--set '" + text + "': empty key in '" + path + "'");
     if (dot == std::string::npos) {
       if (index >= 0) throw SceneError("--set '" + text + "': the last key cannot be indexed");
-      table->insert_or_assign(part, *parsed.get("value"));
+      table->insert_or_assign(part, std::move(*parsed.get("value")));  // moved: keeps its source
       return;
     }
     toml::node* next = table->get(part);
@@ -357,7 +364,9 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     }
     if (t->has("time")) s.time = t->positive("time");
     if (t->has("ratio")) s.ratio = t->positive("ratio");
-    if (s.cycles < 0 && s.time < 0 && s.ratio < 0) t->fail("cycles", "set at least one of cycles, time or ratio");
+    if (s.cycles < 0 && s.time < 0 && s.ratio < 0) t->failTable("set at least one of cycles, time or ratio");
+    if (s.ratio > 0 && s.cycles < 0 && s.time < 0)
+      t->fail("ratio", "needs a limit as well: set cycles or time, so that a run that never reaches the ratio ends");
     t->finish();
   }
 
@@ -461,7 +470,13 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     for (std::size_t i = 0; i < m.jointMaterials.size(); ++i)
       if (m.jointMaterials[i].name == joint) index = static_cast<int>(i);
     if (index < 0) r.fail("joint", "no joint material named '" + joint + "'");
-    m.jointAssignments.push_back({{std::min(a, b), std::max(a, b)}, index});
+    const std::pair<int, int> pair{std::min(a, b), std::max(a, b)};
+    if (a == b) r.fail("blocks", "a joint is between two different blocks");
+    for (const auto& [assigned, material] : m.jointAssignments)
+      if (assigned == pair)
+        r.fail("blocks", "the joint between '" + names[0] + "' and '" + names[1] + "' is already assigned ('" +
+                             m.jointMaterials[material].name + "')");
+    m.jointAssignments.push_back({pair, index});
     r.finish();
   }
 

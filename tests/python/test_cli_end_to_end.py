@@ -30,6 +30,7 @@ def test_second_run_of_the_same_scene_gives_identical_results(tmp_path):
     for r in (first, second):
         for key in ("wall_seconds", "setup_seconds", "stage_seconds"):
             r["run"].pop(key)
+        assert r.pop("environment")["written_utc"].endswith("Z")
     assert first == second
     assert first["histories"]["energy_ratio"]["value"]
 
@@ -83,3 +84,23 @@ def test_overlap_beyond_half_the_rounding_length_exits_6_naming_the_contact(tmp_
 def test_usage_error_exits_2(tmp_path):
     done = subprocess.run([VDEC, "run"], capture_output=True, text=True)
     assert done.returncode == 2
+
+
+@pytest.mark.requirements("REQ-RUN-001")
+def test_run_stops_when_the_unbalanced_force_ratio_is_reached(tmp_path):
+    done, results = run(tmp_path, SCENE, "--set", "solver.mass_damping=200.0", "--set", "stop.ratio=1e-4",
+                        "--set", "stop.cycles=100000", "--set", "stop.time=1e3")
+    assert done.returncode == 0, done.stderr
+    assert results["run"]["stop_reason"] == "ratio"
+    assert results["run"]["unbalanced_ratio"] <= 1e-4
+    assert results["run"]["cycles"] < 100000
+    assert "warning" not in done.stderr
+
+
+@pytest.mark.requirements("REQ-RUN-001")
+def test_run_that_reaches_its_limit_before_the_ratio_says_so(tmp_path):
+    done, results = run(tmp_path, SCENE, "--set", "stop.ratio=1e-12", "--set", "stop.cycles=50",
+                        "--set", "stop.time=1e3")
+    assert done.returncode == 0, done.stderr
+    assert results["run"]["stop_reason"] == "cycles" and results["run"]["cycles"] == 50
+    assert "warning: stopped on cycles before the unbalanced-force ratio fell to 1e-12" in done.stderr

@@ -149,3 +149,38 @@ TEST(ContactGeometry, OverlappingBlocksAtTheStartAreAnErrorNamingThem) {
     EXPECT_NE(what.find("'base'"), std::string::npos) << what;
   }
 }
+
+TEST(ContactGeometry, BlocksCrossingLikeAPlusSignAreAnErrorNamingThem) {
+  VDEC_REQUIREMENTS("REQ-CONTACT-003");
+  // No corner of either block is inside the other: only their edges cross.
+  Scene s = sceneFromText(R"(
+[model]
+rounding = 0.01
+[stop]
+cycles = 1
+[[block_material]]
+name = "rock"
+density = 2500.0
+[[joint_material]]
+name = "j"
+kn = 1e8
+ks = 1e8
+[[block]]
+name = "across"
+material = "rock"
+vertices = [[-2.0, -0.5], [2.0, -0.5], [2.0, 0.5], [-2.0, 0.5]]
+[[block]]
+name = "upright"
+material = "rock"
+vertices = [[-0.5, -2.0], [0.5, -2.0], [0.5, 2.0], [-0.5, 2.0]]
+)", "plus");
+  ContactDetection detection;
+  try {
+    detection.initialise(s.model);
+    FAIL() << "crossing not detected";
+  } catch (const GeometryError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'across'"), std::string::npos) << what;
+    EXPECT_NE(what.find("'upright'"), std::string::npos) << what;
+  }
+}

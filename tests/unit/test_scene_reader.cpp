@@ -147,3 +147,31 @@ to = [5.0, 1.0]
   for (double m : s.model.blocks.mass) mass += m;
   EXPECT_NEAR(mass, 2000.0 * 8.0, 1e-9);
 }
+
+TEST(SceneReader, OverrideErrorsNameTheOverride) {
+  VDEC_REQUIREMENTS("REQ-IO-003");
+  const std::string path = writeSceneFile(blockOnBase(), "override-error");
+  try {
+    readScene(path, {"solver.frac=-0.5"});
+    FAIL();
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("--set 'solver.frac=-0.5'"), std::string::npos) << what;
+    EXPECT_NE(what.find("key 'solver.frac'"), std::string::npos) << what;
+  }
+}
+
+TEST(SceneReader, RunLimitsAndJointAssignmentsAreChecked) {
+  VDEC_REQUIREMENTS("REQ-IO-002,REQ-RUN-001");
+  // A stop table with nothing in it names the table and its line.
+  const std::string empty = sceneError(replaced(blockOnBase(), "cycles = 10", ""), "stop-empty");
+  EXPECT_TRUE(std::regex_search(empty, std::regex(R"(stop-empty\.toml:6: \[stop\]: set at least one)"))) << empty;
+  // A ratio alone could run for ever.
+  const std::string ratio = sceneError(replaced(blockOnBase(), "cycles = 10", "ratio = 1e-5"), "stop-ratio");
+  EXPECT_NE(ratio.find("key 'stop.ratio': needs a limit"), std::string::npos) << ratio;
+  // The same joint assigned twice.
+  const std::string assignment = "[[joint_assignment]]\nblocks = [\"top\", \"base\"]\njoint = \"joint\"\n";
+  const std::string twice = sceneError(blockOnBase() + assignment + assignment, "assigned-twice");
+  EXPECT_NE(twice.find("already assigned"), std::string::npos) << twice;
+  EXPECT_TRUE(std::regex_search(twice, std::regex(R"(assigned-twice\.toml:\d+: key 'joint_assignment\[1\]\.blocks')"))) << twice;
+}
