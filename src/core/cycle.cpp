@@ -68,6 +68,7 @@ void Cycle::buildStages() {
                        checkEnergy();
                        supplied_ += 0.5 * t.externalWork;
                        energy_.externalWork += t.externalWork;
+                       energy_.dampingDissipation += t.dampingDissipation;
                        model_.time += dt_;
                        ++model_.cycle;
                      }});

@@ -31,6 +31,7 @@ struct EnergyReport {
   double kinetic = 0.0;            // at the end
   double strain = 0.0;             // at the end
   double slipDissipation = 0.0;    // by all contacts, existing and deleted
+  double dampingDissipation = 0.0; // by mass damping
   double largestExcess = 0.0;      // max over the run of (kinetic + strain - supplied) / largest supplied
 };
 

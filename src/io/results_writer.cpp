@@ -70,6 +70,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                  {"kinetic", report.energy.kinetic},
                  {"strain", report.energy.strain},
                  {"slip_dissipation", report.energy.slipDissipation},
+                 {"damping_dissipation", report.energy.dampingDissipation},
                  {"largest_excess", report.energy.largestExcess}};
   json histories = json::object();
   // The specs are in the scene; the series are in the report, in the same order.

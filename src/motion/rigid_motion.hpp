@@ -8,6 +8,7 @@ namespace vdec {
 struct MotionStepTotals {
   double kineticEnergy = 0.0;       // time-centred: mean of the energies at t - dt/2 and t + dt/2
   double externalWork = 0.0;        // by gravity, applied loads and driven blocks over the step
+  double dampingDissipation = 0.0;  // by mass damping over the step: alpha m vbar^2 dt
   double largestUnbalancedForce = 0.0;
   double largestDisplacement = 0.0; // of any vertex over the step (bounds contact detection)
 };
@@ -17,8 +18,8 @@ struct MotionStepTotals {
 MotionStepTotals integrateRigidBlocks(Model& model, double dt, double massDamping);
 
 // dt_b = FRAC * 2 sqrt(M_min / K_max), K_max = max(Kn, Ks) for point contacts and
-// max(kn, ks) * l_typ for joints, with l_typ the longest block edge (1.3-28, 1.3-29).
-// M_min is over blocks with a free degree of freedom, or over all blocks when all are driven.
+// max(kn, ks) * l_typ for joints (1.3-28, 1.3-29). M_min and l_typ (the longest edge) are over
+// the blocks with a free degree of freedom, or over all blocks when all are driven.
 double rigidBlockTimeStep(const Model& model, double frac);
 
 }  // namespace vdec
