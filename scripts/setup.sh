@@ -4,8 +4,8 @@
 set -euo pipefail
 packages=(
   cmake g++ make git
-  libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev libssl-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libssl-dev
   python3-numpy python3-scipy python3-matplotlib python3-pytest
 )
 missing=()

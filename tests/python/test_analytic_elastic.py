@@ -1,0 +1,591 @@
+"""Closed-form plane-strain elasticity references (verification/analytic/elastic.py) at known values.
+
+Known values are worked by hand in the comments; equilibrium, compatibility and Hooke's-law checks use
+independent routes (central finite differences of the returned fields, the 3D compliance written out
+here, numerical time integration), never the function under test rewritten.
+"""
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import cumulative_trapezoid
+
+from analytic import elastic as el
+
+REQ = pytest.mark.requirements("REQ-QA-003")
+
+# The reference rock: E = 10 GPa, nu = 0.25, so lam = G = 4 GPa, K = 20/3 GPa, M = lam + 2 G = 12 GPa,
+# kappa = 3 - 4 nu = 2.
+ROCK = dict(E=10e9, nu=0.25)
+G_ROCK = 4e9
+
+
+def plane_strain_strains(sxx, syy, sxy, *, E, nu):
+    """3D isotropic compliance with e_zz = 0 imposed: s_zz = nu (s_xx + s_yy) from
+    e_zz = (s_zz - nu (s_xx + s_yy)) / E = 0, then e_xx = (s_xx - nu (s_yy + s_zz)) / E, etc.,
+    gamma_xy = 2 (1 + nu) s_xy / E. Returns (e_xx, e_yy, gamma_xy)."""
+    szz = nu * (sxx + syy)
+    return (sxx - nu * (syy + szz)) / E, (syy - nu * (sxx + szz)) / E, 2.0 * (1.0 + nu) * sxy / E
+
+
+# ---------------------------------------------------------------- elastic constants
+
+
+@REQ
+def test_elastic_constants_known_values():
+    # E = 10 GPa, nu = 0.25: lam = 10e9 * 0.25 / (1.25 * 0.5) = 4e9, G = 10e9 / 2.5 = 4e9,
+    # K = 10e9 / (3 * 0.5) = 6.6667e9, M = K + 4 G / 3 = 6.6667e9 + 5.3333e9 = 12e9 = lam + 2 G
+    lam, G = el.lame_from_young(**ROCK)
+    assert (lam, G) == (pytest.approx(4e9, rel=1e-14), pytest.approx(4e9, rel=1e-14))
+    K, G = el.bulk_shear_from_young(**ROCK)
+    assert (K, G) == (pytest.approx(20e9 / 3.0, rel=1e-14), pytest.approx(4e9, rel=1e-14))
+    assert el.constrained_modulus(**ROCK) == pytest.approx(12e9, rel=1e-14)
+    # E' = 10e9 / (1 - 0.0625) = 1.0666667e10, nu' = 0.25 / 0.75 = 1/3
+    e_prime, nu_prime = el.plane_strain_moduli(**ROCK)
+    assert e_prime == pytest.approx(1.0666666667e10, rel=1e-10) and nu_prime == pytest.approx(1.0 / 3.0, rel=1e-14)
+    # E = 70 GPa, nu = 0.3: lam = 21e9 / (1.3 * 0.4) = 40.384615e9, G = 70e9 / 2.6 = 26.923077e9,
+    # K = 70e9 / 1.2 = 58.333333e9
+    lam, G = el.lame_from_young(E=70e9, nu=0.3)
+    np.testing.assert_allclose([lam, G], [40.384615385e9, 26.923076923e9], rtol=1e-10)
+    K, _ = el.bulk_shear_from_young(E=70e9, nu=0.3)
+    assert K == pytest.approx(58.333333333e9, rel=1e-10)
+    # back: E = 9 K G / (3 K + G) = 9 * 6.6667 * 4 / (20 + 4) e9 = 10e9, nu = (20 - 8) / (2 * 24) = 0.25
+    E, nu = el.young_poisson_from_bulk_shear(K=20e9 / 3.0, G=4e9)
+    assert (E, nu) == (pytest.approx(10e9, rel=1e-14), pytest.approx(0.25, rel=1e-14))
+
+
+@REQ
+def test_elastic_constants_round_trip_vectorised():
+    E = np.array([1e6, 10e9, 70e9, 200e9])
+    nu = np.array([-0.5, 0.0, 0.3, 0.49])
+    K, G = el.bulk_shear_from_young(E=E, nu=nu)
+    E2, nu2 = el.young_poisson_from_bulk_shear(K=K, G=G)
+    np.testing.assert_allclose(E2, E, rtol=1e-13)
+    np.testing.assert_allclose(nu2, nu, rtol=1e-12, atol=1e-15)
+    lam, G2 = el.lame_from_young(E=E, nu=nu)
+    np.testing.assert_allclose(G2, G, rtol=1e-15)
+    # K = lam + 2 G / 3 and M = lam + 2 G = K + 4 G / 3
+    np.testing.assert_allclose(lam + 2.0 * G / 3.0, K, rtol=1e-12)
+    np.testing.assert_allclose(el.constrained_modulus(E=E, nu=nu), K + 4.0 * G / 3.0, rtol=1e-12)
+
+
+@REQ
+def test_elastic_constants_reject_bad_input():
+    for E, nu in ((10e9, 0.5), (10e9, -1.0), (0.0, 0.25), (-1.0, 0.25), (10e9, np.array([0.2, 0.6]))):
+        with pytest.raises(ValueError):
+            el.lame_from_young(E=E, nu=nu)
+    with pytest.raises(ValueError):
+        el.young_poisson_from_bulk_shear(K=1e9, G=0.0)
+
+
+# ---------------------------------------------------------------- homogeneous samples
+
+
+@REQ
+def test_plane_strain_uniaxial_known_values():
+    # sigma_yy = -1 MPa (compression), E = 10 GPa, nu = 0.25:
+    # e_yy = (1 - 0.0625) * -1e6 / 1e10 = -9.375e-5, e_xx = -0.25 * 1.25 * -1e6 / 1e10 = +3.125e-5,
+    # sigma_zz = 0.25 * -1e6 = -2.5e5
+    exx, eyy, szz = el.plane_strain_uniaxial(sigma_yy=-1e6, **ROCK)
+    np.testing.assert_allclose([exx, eyy, szz], [3.125e-5, -9.375e-5, -2.5e5], rtol=1e-13)
+    # biaxial s_xx = -2 MPa, s_yy = -1 MPa: s_zz = -0.75 MPa,
+    # e_xx = (1.25 / 1e10)(0.75 * -2e6 - 0.25 * -1e6) = 1.25e-10 * -1.25e6 = -1.5625e-4,
+    # e_yy = (1.25 / 1e10)(0.75 * -1e6 - 0.25 * -2e6) = 1.25e-10 * -0.25e6 = -3.125e-5
+    exx, eyy, szz = el.plane_strain_biaxial(sigma_xx=-2e6, sigma_yy=-1e6, **ROCK)
+    np.testing.assert_allclose([exx, eyy, szz], [-1.5625e-4, -3.125e-5, -7.5e5], rtol=1e-13)
+
+
+@REQ
+def test_plane_strain_biaxial_agrees_with_the_3d_compliance():
+    rng = np.random.default_rng(7)
+    sxx, syy = rng.uniform(-5e6, 5e6, 20), rng.uniform(-5e6, 5e6, 20)
+    for E, nu in ((10e9, 0.25), (50e9, 0.0), (1e9, 0.45), (30e9, -0.3)):
+        exx, eyy, szz = el.plane_strain_biaxial(sigma_xx=sxx, sigma_yy=syy, E=E, nu=nu)
+        # the full 6x6 isotropic compliance restricted to normal stresses, solved for s_zz with e_zz = 0
+        S = np.array([[1.0, -nu, -nu], [-nu, 1.0, -nu], [-nu, -nu, 1.0]]) / E
+        szz_ref = -(S[2, 0] * sxx + S[2, 1] * syy) / S[2, 2]
+        np.testing.assert_allclose(szz, szz_ref, rtol=1e-12, atol=1e-6)
+        np.testing.assert_allclose(exx, S[0, 0] * sxx + S[0, 1] * syy + S[0, 2] * szz_ref, rtol=1e-10, atol=1e-20)
+        np.testing.assert_allclose(eyy, S[1, 0] * sxx + S[1, 1] * syy + S[1, 2] * szz_ref, rtol=1e-10, atol=1e-20)
+
+
+@REQ
+def test_young_poisson_from_plane_strain_uniaxial():
+    # from the known values above: E' = -1e6 / -9.375e-5 = 1.0666667e10, nu' = 3.125e-5 / 9.375e-5 = 1/3,
+    # nu = (1/3) / (4/3) = 0.25, E = 1.0666667e10 * 0.9375 = 1e10
+    E, nu = el.young_poisson_from_plane_strain_uniaxial(sigma_yy=-1e6, exx=3.125e-5, eyy=-9.375e-5)
+    assert (E, nu) == (pytest.approx(10e9, rel=1e-13), pytest.approx(0.25, rel=1e-13))
+    # round trip over a range of materials, in tension and compression
+    E0, nu0 = np.array([1e9, 10e9, 70e9, 5e6]), np.array([0.0, 0.25, 0.3, 0.49])
+    for s in (2e6, -3e6):
+        exx, eyy, _ = el.plane_strain_uniaxial(E=E0, nu=nu0, sigma_yy=s)
+        E, nu = el.young_poisson_from_plane_strain_uniaxial(sigma_yy=s, exx=exx, eyy=eyy)
+        np.testing.assert_allclose(E, E0, rtol=1e-12)
+        np.testing.assert_allclose(nu, nu0, rtol=1e-12, atol=1e-15)
+    with pytest.raises(ValueError):
+        el.young_poisson_from_plane_strain_uniaxial(sigma_yy=1e6, exx=0.0, eyy=0.0)
+    with pytest.raises(ValueError):  # lateral expansion larger than axial: nu' = 2 -> nu = 2/3, not a solid
+        el.young_poisson_from_plane_strain_uniaxial(sigma_yy=-1e6, exx=2e-4, eyy=-1e-4)
+
+
+# ---------------------------------------------------------------- patch test
+
+
+@REQ
+def test_linear_field_and_its_stresses_known_values():
+    c = dict(a0=0.01, a1=1e-4, a2=3e-4, b0=-0.02, b1=-1e-4, b2=-2e-4)
+    # at (2, 3): ux = 0.01 + 2e-4 + 9e-4 = 0.0111, uy = -0.02 - 2e-4 - 6e-4 = -0.0208
+    ux, uy = el.linear_displacement_field(x=np.array([0.0, 2.0]), y=np.array([0.0, 3.0]), **c)
+    np.testing.assert_allclose(ux, [0.01, 0.0111], rtol=1e-14)
+    np.testing.assert_allclose(uy, [-0.02, -0.0208], rtol=1e-14)
+    # e_xx = 1e-4, e_yy = -2e-4, gamma = 3e-4 - 1e-4 = 2e-4; lam = G = 4e9: lam tr e = 4e9 * -1e-4 = -4e5
+    # s_xx = -4e5 + 8e9 * 1e-4 = 4e5, s_yy = -4e5 + 8e9 * -2e-4 = -2e6, s_xy = 4e9 * 2e-4 = 8e5,
+    # s_zz = -4e5 = 0.25 * (4e5 - 2e6)
+    s = el.stress_from_linear_field(a1=1e-4, a2=3e-4, b1=-1e-4, b2=-2e-4, **ROCK)
+    np.testing.assert_allclose(s, [4e5, -2e6, 8e5, -4e5], rtol=1e-12)
+    # a rigid rotation (a2 = -b1) and a translation carry no stress
+    np.testing.assert_allclose(el.stress_from_linear_field(a1=0.0, a2=1e-3, b1=-1e-3, b2=0.0, **ROCK), 0.0, atol=0.0)
+
+
+@REQ
+def test_linear_field_stresses_satisfy_hookes_law():
+    rng = np.random.default_rng(3)
+    a1, a2, b1, b2 = rng.uniform(-1e-3, 1e-3, (4, 50))
+    for E, nu in ((10e9, 0.25), (1e9, 0.45), (60e9, 0.1)):
+        sxx, syy, sxy, szz = el.stress_from_linear_field(a1=a1, a2=a2, b1=b1, b2=b2, E=E, nu=nu)
+        exx, eyy, gxy = plane_strain_strains(sxx, syy, sxy, E=E, nu=nu)
+        # strains of the field by finite differences of the displacement itself (exact for a linear field)
+        h = 0.5
+        ux0, uy0 = el.linear_displacement_field(x=1.0, y=2.0, a0=0.3, a1=a1, a2=a2, b0=-0.1, b1=b1, b2=b2)
+        uxx, uyx = el.linear_displacement_field(x=1.0 + h, y=2.0, a0=0.3, a1=a1, a2=a2, b0=-0.1, b1=b1, b2=b2)
+        uxy, uyy = el.linear_displacement_field(x=1.0, y=2.0 + h, a0=0.3, a1=a1, a2=a2, b0=-0.1, b1=b1, b2=b2)
+        scale = 1e-3
+        np.testing.assert_allclose(exx, (uxx - ux0) / h, rtol=0, atol=1e-11 * scale)
+        np.testing.assert_allclose(eyy, (uyy - uy0) / h, rtol=0, atol=1e-11 * scale)
+        np.testing.assert_allclose(gxy, (uxy - ux0) / h + (uyx - uy0) / h, rtol=0, atol=1e-11 * scale)
+        # and e_zz = (s_zz - nu (s_xx + s_yy)) / E = 0
+        np.testing.assert_allclose((szz - nu * (sxx + syy)) / E, 0.0, atol=1e-15 * scale)
+
+
+# ---------------------------------------------------------------- Lame cylinder
+
+LAME = dict(a=1.0, b=2.0, p_i=10e6, p_o=0.0, **ROCK)
+
+
+@REQ
+def test_lame_known_values():
+    # a = 1, b = 2, p_i = 10 MPa: A = 10e6 * 1 / 3 = 3.3333e6, B = 10e6 * 4 / 3 = 13.3333e6 Pa m^2.
+    # wall: srr = -10e6, stt = A + B = 50e6/3 = 16.6667e6 (= p_i (b^2 + a^2)/(b^2 - a^2) = 5/3 p_i);
+    # outside: srr = A - B/4 = 0, stt = A + B/4 = 20e6/3; szz = 2 nu A = 0.5 * 3.3333e6 = 1.6667e6.
+    # u_r = (1.25 / 1e10)(0.5 A r + B / r): at r = 1, 1.25e-10 * (5/3 + 40/3) e6 = 1.25e-10 * 15e6 = 1.875e-3 m;
+    # at r = 2, 1.25e-10 * (10/3 + 20/3) e6 = 1.25e-3 m
+    srr, stt, szz, ur = el.lame_cylinder(r=np.array([1.0, 2.0]), **LAME)
+    np.testing.assert_allclose(srr, [-10e6, 0.0], rtol=1e-13, atol=1e-8)
+    np.testing.assert_allclose(stt, [50e6 / 3.0, 20e6 / 3.0], rtol=1e-13)
+    np.testing.assert_allclose(szz, 5e6 / 3.0, rtol=1e-13)
+    np.testing.assert_allclose(ur, [1.875e-3, 1.25e-3], rtol=1e-13)
+    # outer pressure only: stt(a) = -2 p_o b^2 / (b^2 - a^2) = -8/3 p_o
+    _, stt, _, _ = el.lame_cylinder(r=1.0, a=1.0, b=2.0, p_i=0.0, p_o=3e6, **ROCK)
+    assert stt == pytest.approx(-8e6, rel=1e-13)
+    # equal pressures: uniform srr = stt = -p, u_r = (1 + nu)(1 - 2 nu)(-p) r / E = 1.25 * 0.5 * -1e6 * 1.5 / 1e10
+    srr, stt, szz, ur = el.lame_cylinder(r=1.5, a=1.0, b=2.0, p_i=1e6, p_o=1e6, **ROCK)
+    np.testing.assert_allclose([srr, stt, szz, ur], [-1e6, -1e6, -5e5, -9.375e-5], rtol=1e-13)
+
+
+@REQ
+def test_lame_equilibrium_and_boundary_conditions():
+    r = np.linspace(1.0, 2.0, 41)[1:-1]
+    for p_i, p_o in ((10e6, 0.0), (0.0, 5e6), (7e6, 3e6), (-2e6, 1e6)):
+        p = dict(a=1.0, b=2.0, p_i=p_i, p_o=p_o, **ROCK)
+        srr, stt, szz, _ = el.lame_cylinder(r=np.array([1.0, 2.0]), **p)
+        np.testing.assert_allclose(srr, [-p_i, -p_o], rtol=1e-13, atol=1e-7)
+        # d srr / dr + (srr - stt) / r = 0, central differences
+        h = 1e-5
+        srr, stt, szz, _ = el.lame_cylinder(r=r, **p)
+        dsrr = (el.lame_cylinder(r=r + h, **p)[0] - el.lame_cylinder(r=r - h, **p)[0]) / (2.0 * h)
+        assert np.max(np.abs(dsrr + (srr - stt) / r)) < 1e-6 * 10e6
+        np.testing.assert_allclose(szz, 0.25 * (srr + stt), rtol=1e-13, atol=1e-7)
+
+
+@REQ
+def test_lame_displacement_strains_give_the_stresses():
+    # e_rr = du/dr (finite differences), e_tt = u / r, then the 3D compliance with e_zz = 0 (no shear)
+    r = np.linspace(1.0, 2.0, 21)[1:-1]
+    h = 1e-6
+    for nu in (0.0, 0.25, 0.45):
+        p = dict(a=1.0, b=2.0, p_i=7e6, p_o=3e6, E=10e9, nu=nu)
+        srr, stt, szz, ur = el.lame_cylinder(r=r, **p)
+        err = (el.lame_cylinder(r=r + h, **p)[3] - el.lame_cylinder(r=r - h, **p)[3]) / (2.0 * h)
+        ett = ur / r
+        e_rr, e_tt, _ = plane_strain_strains(srr, stt, 0.0, E=10e9, nu=nu)
+        np.testing.assert_allclose(err, e_rr, rtol=0, atol=1e-7 * 1e6 / 10e9)
+        np.testing.assert_allclose(ett, e_tt, rtol=0, atol=1e-12 * 1e6 / 10e9)
+        # e_zz = (szz - nu (srr + stt)) / E = 0
+        np.testing.assert_allclose(szz, nu * (srr + stt), rtol=1e-13, atol=1e-7)
+
+
+@REQ
+def test_lame_infinite_outer_radius_is_a_pressurised_hole():
+    # b -> inf, p_o = 0: A = 0, B = p_i a^2: srr = -p_i a^2 / r^2, stt = +p_i a^2 / r^2, szz = 0,
+    # u_r = (1 + nu) p_i a^2 / (E r); at r = 2 a: -/+ 2.5 MPa, u_r = 1.25 * 10e6 / (1e10 * 2) = 6.25e-4 m
+    srr, stt, szz, ur = el.lame_cylinder(r=np.array([1.0, 2.0]), a=1.0, b=np.inf, p_i=10e6, p_o=0.0, **ROCK)
+    np.testing.assert_allclose(srr, [-10e6, -2.5e6], rtol=1e-14)
+    np.testing.assert_allclose(stt, [10e6, 2.5e6], rtol=1e-14)
+    np.testing.assert_allclose(szz, 0.0, atol=1e-9)
+    np.testing.assert_allclose(ur, [1.25e-3, 6.25e-4], rtol=1e-14)
+    # and a large finite b approaches it at the rate a^2 / b^2 = 1e-8: with q = a^2 / b^2 the finite cylinder has
+    # A = p_i q / (1 - q) and B = p_i a^2 / (1 - q), so stt - stt_inf = p_i q (1 + a^2 / r^2) / (1 - q) <= 2 p_i q
+    # (1 + 1e-8), i.e. 0.2 Pa at the wall
+    r = np.linspace(1.0, 5.0, 9)
+    finite = el.lame_cylinder(r=r, a=1.0, b=1e4, p_i=10e6, p_o=0.0, **ROCK)
+    infinite = el.lame_cylinder(r=r, a=1.0, b=np.inf, p_i=10e6, p_o=0.0, **ROCK)
+    np.testing.assert_allclose(finite[1] - infinite[1], 10e6 * 1e-8 * (1.0 + 1.0 / r ** 2), rtol=1e-6)
+    np.testing.assert_allclose(finite[0] - infinite[0], 10e6 * 1e-8 * (1.0 - 1.0 / r ** 2), rtol=0, atol=1e-8)
+
+
+@REQ
+def test_lame_rejects_points_outside_the_wall():
+    with pytest.raises(ValueError):
+        el.lame_cylinder(r=np.array([0.5, 1.5]), **LAME)
+    with pytest.raises(ValueError):
+        el.lame_cylinder(r=2.5, **LAME)
+    with pytest.raises(ValueError):
+        el.lame_cylinder(r=1.0, a=2.0, b=1.0, p_i=1.0, p_o=0.0, **ROCK)
+
+
+# ---------------------------------------------------------------- Kirsch
+
+
+@REQ
+def test_kirsch_hole_wall_known_values():
+    S = 1e6
+    th = np.radians([0.0, 45.0, 90.0, 180.0, 270.0])
+    # uniaxial S_x = S: stt(a) = S - 2 S cos 2 theta: -S at 0 and 180, S at 45, 3 S at 90 and 270
+    res = el.kirsch(r=1.0, theta=th, a=1.0, S_x=S, S_y=0.0)
+    np.testing.assert_allclose(res["stt"], [-S, S, 3 * S, -S, 3 * S], rtol=1e-13, atol=1e-9 * S)
+    np.testing.assert_allclose(res["srr"], 0.0, atol=1e-9 * S)
+    np.testing.assert_allclose(res["srt"], 0.0, atol=1e-9 * S)
+    # compression S_x = -S: the signs follow, -3 S at 90 deg and +S at 0
+    res = el.kirsch(r=1.0, theta=np.radians([0.0, 90.0]), a=1.0, S_x=-S, S_y=0.0)
+    np.testing.assert_allclose(res["stt"], [S, -3 * S], rtol=1e-13)
+    # hydrostatic S_x = S_y = -p: stt(a) = -2 p everywhere (2 P with P = -p)
+    res = el.kirsch(r=1.0, theta=th, a=1.0, S_x=-5e6, S_y=-5e6)
+    np.testing.assert_allclose(res["stt"], -10e6, rtol=1e-13)
+    # S_x = -10, S_y = -5 MPa: P = -7.5, Q = -2.5 MPa; stt(a) = 2 P - 4 Q cos 2 theta = -15 + 10 cos 2 theta:
+    # -5 MPa at 0 (the hole's side facing the larger stress), -25 MPa at 90 deg
+    res = el.kirsch(r=2.0, theta=np.radians([0.0, 90.0]), a=2.0, S_x=-10e6, S_y=-5e6)
+    np.testing.assert_allclose(res["stt"], [-5e6, -25e6], rtol=1e-13)
+    # interior point, uniaxial S, r = 2 a, theta = 90: a^2/r^2 = 1/4, a^4/r^4 = 1/16, cos 2 theta = -1:
+    # stt = S/2 (1.25) + S/2 (1 + 3/16) = 0.625 S + 0.59375 S = 1.21875 S;
+    # srr = S/2 (0.75) - S/2 (1 - 1 + 3/16) = 0.375 S - 0.09375 S = 0.28125 S
+    res = el.kirsch(r=2.0, theta=math.pi / 2, a=1.0, S_x=S, S_y=0.0)
+    assert res["stt"] == pytest.approx(1.21875 * S, rel=1e-13)
+    assert res["srr"] == pytest.approx(0.28125 * S, rel=1e-13)
+
+
+@REQ
+def test_kirsch_far_field_and_cartesian_components():
+    Sx, Sy = -10e6, -4e6
+    th = np.linspace(0.0, 2.0 * math.pi, 25)
+    res = el.kirsch(r=1e4, theta=th, a=1.0, S_x=Sx, S_y=Sy)
+    # a^2 / r^2 = 1e-8: the far field to 1e-8 relative
+    np.testing.assert_allclose(res["sxx"], Sx, rtol=0, atol=5e-8 * 10e6)
+    np.testing.assert_allclose(res["syy"], Sy, rtol=0, atol=5e-8 * 10e6)
+    np.testing.assert_allclose(res["sxy"], 0.0, atol=5e-8 * 10e6)
+    # polar far field: srr = Sx cos^2 + Sy sin^2, srt = (Sy - Sx) sin cos
+    np.testing.assert_allclose(res["srr"], Sx * np.cos(th) ** 2 + Sy * np.sin(th) ** 2, rtol=0, atol=5e-8 * 10e6)
+    np.testing.assert_allclose(res["srt"], (Sy - Sx) * np.sin(th) * np.cos(th), rtol=0, atol=5e-8 * 10e6)
+    # invariants: the trace and the determinant of the in-plane stress are the same in both frames
+    res = el.kirsch(r=np.linspace(1.0, 4.0, 25), theta=th, a=1.0, S_x=Sx, S_y=Sy)
+    np.testing.assert_allclose(res["sxx"] + res["syy"], res["srr"] + res["stt"], rtol=1e-13)
+    np.testing.assert_allclose(res["sxx"] * res["syy"] - res["sxy"] ** 2, res["srr"] * res["stt"] - res["srt"] ** 2,
+                               rtol=1e-11)
+    # on the x axis (theta = 0) and the y axis the two frames coincide (sxx = srr, syy = stt on x)
+    x_axis = el.kirsch(r=1.7, theta=0.0, a=1.0, S_x=Sx, S_y=Sy)
+    assert x_axis["sxx"] == pytest.approx(x_axis["srr"], rel=1e-15)
+    assert x_axis["syy"] == pytest.approx(x_axis["stt"], rel=1e-15)
+    # kirsch_cartesian_stress at (0, 1.7) equals the polar call at theta = 90 deg
+    sxx, syy, sxy = el.kirsch_cartesian_stress(x=0.0, y=1.7, a=1.0, S_x=Sx, S_y=Sy)
+    y_axis = el.kirsch(r=1.7, theta=math.pi / 2, a=1.0, S_x=Sx, S_y=Sy)
+    np.testing.assert_allclose([sxx, syy, sxy], [y_axis["stt"], y_axis["srr"], 0.0], rtol=1e-13, atol=1e-6)
+
+
+@REQ
+def test_kirsch_hole_is_traction_free_everywhere():
+    th = np.linspace(0.0, 2.0 * math.pi, 73)
+    res = el.kirsch(r=0.3, theta=th, a=0.3, S_x=-7e6, S_y=2e6)
+    np.testing.assert_allclose(res["srr"], 0.0, atol=1e-8 * 7e6)
+    np.testing.assert_allclose(res["srt"], 0.0, atol=1e-8 * 7e6)
+    # the Cartesian traction on the wall, t = s . n with n = (cos, sin), vanishes too
+    c, s = np.cos(th), np.sin(th)
+    np.testing.assert_allclose(res["sxx"] * c + res["sxy"] * s, 0.0, atol=1e-8 * 7e6)
+    np.testing.assert_allclose(res["sxy"] * c + res["syy"] * s, 0.0, atol=1e-8 * 7e6)
+
+
+@REQ
+def test_kirsch_equilibrium_by_finite_differences():
+    # polar equilibrium, no body force:
+    #   d srr/dr + (1/r) d srt/dtheta + (srr - stt)/r = 0,   (1/r) d stt/dtheta + d srt/dr + 2 srt / r = 0
+    a, hr, ht = 1.0, 1e-5, 1e-5
+    r, th = np.meshgrid(np.linspace(1.05, 5.0, 12), np.linspace(0.0, 2 * math.pi, 19))
+    for Sx, Sy in ((1e6, 0.0), (-10e6, -4e6), (-3e6, -3e6), (2e6, -5e6)):
+        def k(rr, tt):
+            return el.kirsch(r=rr, theta=tt, a=a, S_x=Sx, S_y=Sy)
+        c = k(r, th)
+        dr = {key: (k(r + hr, th)[key] - k(r - hr, th)[key]) / (2 * hr) for key in ("srr", "srt")}
+        dt = {key: (k(r, th + ht)[key] - k(r, th - ht)[key]) / (2 * ht) for key in ("stt", "srt")}
+        radial = dr["srr"] + dt["srt"] / r + (c["srr"] - c["stt"]) / r
+        hoop = dt["stt"] / r + dr["srt"] + 2.0 * c["srt"] / r
+        scale = max(abs(Sx), abs(Sy)) / a
+        assert np.max(np.abs(radial)) < 1e-5 * scale
+        assert np.max(np.abs(hoop)) < 1e-5 * scale
+    # the axisymmetric part (S_x = S_y) has no theta dependence and no shear, and d srr/dr + (srr - stt)/r = 0
+    res = el.kirsch(r=r, theta=th, a=a, S_x=-3e6, S_y=-3e6)
+    assert np.max(np.abs(res["srt"])) == 0.0
+    assert np.max(np.abs(res["srr"] - res["srr"][0])) < 1e-9 * 3e6
+    dsrr = (el.kirsch(r=r + hr, theta=th, a=a, S_x=-3e6, S_y=-3e6)["srr"]
+            - el.kirsch(r=r - hr, theta=th, a=a, S_x=-3e6, S_y=-3e6)["srr"]) / (2 * hr)
+    assert np.max(np.abs(dsrr + (res["srr"] - res["stt"]) / r)) < 1e-5 * 3e6 / a
+
+
+@REQ
+def test_kirsch_displacement_known_values():
+    # S_x = S = 1 MPa, a = 1, E = 10 GPa, nu = 0.25: G = 4e9, kappa = 2, P = Q = S/2.
+    # r = a, theta = 0: u_r = S a (kappa+1)/(8G) + S a (kappa+1)/(4G) = 3 S a (kappa+1)/(8G) = 9e6/3.2e10 = 2.8125e-4
+    # r = a, theta = 90: u_r = S a (kappa+1)/(8G) - S a (kappa+1)/(4G) = -S a (kappa+1)/(8G) = -9.375e-5
+    # r = a, theta = 45: u_t = -Q/(2G) (a + (kappa-1) a + a) = -S a (kappa+1)/(4G) = -1.875e-4
+    S = 1e6
+    res = el.kirsch(r=1.0, theta=np.radians([0.0, 90.0, 45.0]), a=1.0, S_x=S, S_y=0.0, **ROCK)
+    np.testing.assert_allclose(res["ur"][:2], [2.8125e-4, -9.375e-5], rtol=1e-13)
+    # (sin 2 theta at 90 deg is 1.2e-16 in floating point, hence the absolute tolerance)
+    np.testing.assert_allclose(res["ut"], [0.0, 0.0, -1.875e-4], rtol=1e-13, atol=1e-15 * 1.875e-4)
+    # hoop strain at the wall, theta = 90: (u_r + du_t/dtheta)/a with du_t/dtheta = Q (kappa+1) a / G = 3.75e-4:
+    # -9.375e-5 + 3.75e-4 = 2.8125e-4 = (1 - nu) stt / (2 G) = 0.75 * 3e6 / 8e9 (plane strain, srr = 0)
+    h = 1e-6
+    ut = el.kirsch(r=1.0, theta=np.array([math.pi / 2 - h, math.pi / 2 + h]), a=1.0, S_x=S, S_y=0.0, **ROCK)["ut"]
+    ett = res["ur"][1] + (ut[1] - ut[0]) / (2 * h)
+    assert ett == pytest.approx(2.8125e-4, rel=1e-8)
+    # far from the hole u_r -> e_xx r at theta = 0, e_xx the uniform plane-strain strain of the uniaxial sample
+    # loaded along x: (1 - nu^2) S / E = 0.9375 * 1e6 / 1e10 = 9.375e-5 (the hole adds O(a^2 / r^2) = 1e-8)
+    far = el.kirsch(r=1e4, theta=0.0, a=1.0, S_x=S, S_y=0.0, **ROCK)
+    assert far["ur"] / 1e4 == pytest.approx(9.375e-5, rel=1e-7)
+    # E and nu come together
+    with pytest.raises(ValueError):
+        el.kirsch(r=1.0, theta=0.0, a=1.0, S_x=S, S_y=0.0, E=10e9)
+
+
+@REQ
+def test_kirsch_displacement_strains_reproduce_the_stresses_in_plane_strain():
+    # central differences of (u_x, u_y) in x and y, against the Kirsch stresses through the 3D compliance
+    # with e_zz = 0 (written out in plane_strain_strains above, not taken from the module)
+    a, h = 1.0, 1e-5
+    xs, ys = np.meshgrid(np.linspace(-4.0, 4.0, 17), np.linspace(-4.0, 4.0, 17))
+    keep = np.hypot(xs, ys) > 1.1 * a
+    x, y = xs[keep], ys[keep]
+    for (Sx, Sy), nu in (((1e6, 0.0), 0.25), ((-10e6, -4e6), 0.3), ((2e6, -5e6), 0.45), ((-3e6, -3e6), 0.0)):
+        p = dict(a=a, S_x=Sx, S_y=Sy, E=10e9, nu=nu)
+
+        def u(xx, yy):
+            return el.kirsch_cartesian_displacement(x=xx, y=yy, **p)
+
+        exx = (u(x + h, y)[0] - u(x - h, y)[0]) / (2 * h)
+        eyy = (u(x, y + h)[1] - u(x, y - h)[1]) / (2 * h)
+        gxy = (u(x, y + h)[0] - u(x, y - h)[0]) / (2 * h) + (u(x + h, y)[1] - u(x - h, y)[1]) / (2 * h)
+        sxx, syy, sxy = el.kirsch_cartesian_stress(x=x, y=y, a=a, S_x=Sx, S_y=Sy)
+        e_ref = plane_strain_strains(sxx, syy, sxy, E=10e9, nu=nu)
+        scale = max(abs(Sx), abs(Sy)) / 10e9
+        for got, want in zip((exx, eyy, gxy), e_ref):
+            np.testing.assert_allclose(got, want, rtol=0, atol=1e-7 * scale)
+        # the same in polar components: e_rr = du_r/dr, e_tt = (u_r + du_t/dtheta)/r,
+        # g_rt = (1/r) du_r/dtheta + du_t/dr - u_t/r
+        r, th = np.hypot(x, y), np.arctan2(y, x)
+
+        def k(rr, tt):
+            return el.kirsch(r=rr, theta=tt, **p)
+
+        c = k(r, th)
+        err = (k(r + h, th)["ur"] - k(r - h, th)["ur"]) / (2 * h)
+        ett = (c["ur"] + (k(r, th + h)["ut"] - k(r, th - h)["ut"]) / (2 * h)) / r
+        grt = (k(r, th + h)["ur"] - k(r, th - h)["ur"]) / (2 * h) / r \
+            + (k(r + h, th)["ut"] - k(r - h, th)["ut"]) / (2 * h) - c["ut"] / r
+        e_ref = plane_strain_strains(c["srr"], c["stt"], c["srt"], E=10e9, nu=nu)
+        for got, want in zip((err, ett, grt), e_ref):
+            np.testing.assert_allclose(got, want, rtol=0, atol=1e-7 * scale)
+
+
+@REQ
+def test_kirsch_displacement_check_detects_a_wrong_law():
+    # negative controls for the test above, so that its agreement means something: displacements computed with
+    # a different nu (0.3 or 0.2) miss plane-strain Hooke's law for nu = 0.25, and the module's displacements
+    # (nu = 0.25) miss the plane-STRESS law e_xx = (s_xx - nu s_yy) / E, by far more than the 1e-7 tolerance
+    a, h, x, y = 1.0, 1e-5, np.array([1.5, 0.0, 2.0]), np.array([0.0, 1.5, 2.0])
+    sxx, syy, sxy = el.kirsch_cartesian_stress(x=x, y=y, a=a, S_x=1e6, S_y=0.0)
+    plane_strain = plane_strain_strains(sxx, syy, sxy, E=10e9, nu=0.25)[0]
+    plane_stress = (sxx - 0.25 * syy) / 10e9
+
+    def exx(nu):
+        ux = [el.kirsch_cartesian_displacement(x=x + s, y=y, a=a, S_x=1e6, S_y=0.0, E=10e9, nu=nu)[0]
+              for s in (h, -h)]
+        return (ux[0] - ux[1]) / (2 * h)
+
+    assert np.max(np.abs(exx(0.25) - plane_strain)) < 1e-7 * 1e6 / 10e9
+    for wrong_nu in (0.3, 0.2):
+        assert np.max(np.abs(exx(wrong_nu) - plane_strain)) > 1e-3 * 1e6 / 10e9
+    assert np.max(np.abs(exx(0.25) - plane_stress)) > 1e-3 * 1e6 / 10e9
+
+
+@REQ
+def test_kirsch_hydrostatic_is_lame_with_an_infinite_outer_radius():
+    # S_x = S_y = -p is Lame's hole (p_i = 0) under an outer pressure p at b = inf:
+    # srr = -p (1 - a^2/r^2), stt = -p (1 + a^2/r^2), u_r = -p ((1 - 2 nu) r + a^2 / r) / (2 G) from both
+    r = np.linspace(1.0, 6.0, 11)
+    k = el.kirsch(r=r, theta=0.7, a=1.0, S_x=-4e6, S_y=-4e6, **ROCK)
+    srr, stt, _, ur = el.lame_cylinder(r=r, a=1.0, b=np.inf, p_i=0.0, p_o=4e6, **ROCK)
+    np.testing.assert_allclose(k["srr"], srr, rtol=1e-13, atol=1e-6)
+    np.testing.assert_allclose(k["stt"], stt, rtol=1e-13)
+    np.testing.assert_allclose(k["ur"], ur, rtol=1e-13)
+    np.testing.assert_allclose(k["ut"], 0.0, atol=0.0)
+    # at r = 2: u_r = -4e6 (0.5 * 2 + 0.5) / 8e9 = -7.5e-4 m
+    assert ur[2] == pytest.approx(-7.5e-4, rel=1e-13)
+
+
+@REQ
+def test_kirsch_rejects_points_inside_the_hole():
+    with pytest.raises(ValueError):
+        el.kirsch(r=np.array([0.99, 2.0]), theta=0.0, a=1.0, S_x=1.0, S_y=0.0)
+    with pytest.raises(ValueError):
+        el.kirsch_cartesian_displacement(x=0.5, y=0.5, a=1.0, S_x=1.0, S_y=0.0, **ROCK)
+
+
+# ---------------------------------------------------------------- waves
+
+
+@REQ
+def test_wave_speeds_known_values():
+    # K = 20/3 GPa, G = 4 GPa, rho = 2500: M = 12 GPa, c_p = sqrt(4.8e6) = 2190.8902300 m/s,
+    # c_s = sqrt(1.6e6) = 1264.9110641 m/s; free-sided plane-strain column: sqrt(1.0666667e10 / 2500) = 2065.5911180 m/s
+    assert el.p_wave_speed(K=20e9 / 3.0, G=4e9, rho=2500.0) == pytest.approx(2190.8902300, rel=1e-10)
+    assert el.s_wave_speed(G=4e9, rho=2500.0) == pytest.approx(1264.9110641, rel=1e-10)
+    assert el.plane_strain_bar_wave_speed(E=10e9, nu=0.25, rho=2500.0) == pytest.approx(2065.5911180, rel=1e-10)
+    # c_p / c_s = sqrt(2 (1 - nu) / (1 - 2 nu)) = sqrt(3) at nu = 0.25; nu = 0: c_p = c_bar = sqrt(E / rho)
+    K, G = el.bulk_shear_from_young(E=np.array([10e9, 10e9]), nu=np.array([0.25, 0.0]))
+    cp, cs = el.p_wave_speed(K=K, G=G, rho=2500.0), el.s_wave_speed(G=G, rho=2500.0)
+    assert cp[0] / cs[0] == pytest.approx(math.sqrt(3.0), rel=1e-14)
+    assert cp[1] == pytest.approx(2000.0, rel=1e-14)
+    assert el.plane_strain_bar_wave_speed(E=10e9, nu=0.0, rho=2500.0) == pytest.approx(2000.0, rel=1e-14)
+
+
+@REQ
+def test_step_pulse_known_values():
+    # c = 2000 m/s, t = 0.05 s: the front is at 100 m; v0 = 0.1 m/s, rho = 2500: sigma = -2500 * 2000 * 0.1 = -5e5 Pa
+    x = np.array([0.0, 50.0, 100.0, 200.0])
+    arrival, v = el.step_pulse_arrival(x=x, t=0.05, c=2000.0, v0=0.1)
+    np.testing.assert_allclose(arrival, [0.0, 0.025, 0.05, 0.1], rtol=1e-15)
+    np.testing.assert_allclose(v, [0.1, 0.1, 0.05, 0.0], rtol=1e-15)
+    sigma = el.step_pulse_stress(x=x, t=0.05, c=2000.0, v0=0.1, rho=2500.0)
+    np.testing.assert_allclose(sigma, [-5e5, -5e5, -2.5e5, 0.0], rtol=1e-15)
+    # pulling the end puts the column in tension
+    assert el.step_pulse_stress(x=10.0, t=1.0, c=2000.0, v0=-0.1, rho=2500.0) == pytest.approx(5e5, rel=1e-15)
+    # histories at a gauge: nothing before x / c
+    t = np.array([0.0, 0.0499, 0.0501])
+    _, v = el.step_pulse_arrival(x=100.0, t=t, c=2000.0, v0=0.1)
+    np.testing.assert_allclose(v, [0.0, 0.0, 0.1])
+
+
+@REQ
+def test_step_pulse_stress_is_the_constrained_modulus_times_the_strain():
+    # integrate v in time for the displacement, difference it in x for the strain, multiply by M = K + 4G/3:
+    # a laterally confined column (uniaxial strain) at c = c_p must carry sigma = M e = -rho c v0 behind the front
+    K, G, rho, v0 = 20e9 / 3.0, 4e9, 2500.0, 0.2
+    c = el.p_wave_speed(K=K, G=G, rho=rho)
+    t = np.linspace(0.0, 0.2, 200001)
+    dx = 1.0
+    strains = []
+    for x in (50.0, 120.0, 300.0):
+        u = [cumulative_trapezoid(el.step_pulse_arrival(x=xx, t=t, c=c, v0=v0)[1], t, initial=0.0)[-1]
+             for xx in (x + dx, x - dx)]
+        strains.append((u[0] - u[1]) / (2 * dx))
+    # the trapezoid rule smears the step by at most v0 dt / 2 = 1e-7 m in each u (dt = 1e-6 s), so the strain is
+    # off by at most 2e-7 / (2 dx) = 1e-7 of v0 / c = 9.13e-5: 1.1e-3 relative
+    sigma = (K + 4.0 * G / 3.0) * np.array(strains)
+    expected = el.step_pulse_stress(x=np.array([50.0, 120.0, 300.0]), t=0.2, c=c, v0=v0, rho=rho)
+    # -rho c v0 = -2500 * 2190.89023 * 0.2 = -1.0954451e6 Pa
+    np.testing.assert_allclose(expected, -1.0954451150e6, rtol=1e-10)
+    np.testing.assert_allclose(sigma, expected, rtol=1.5e-3)
+
+
+# ---------------------------------------------------------------- convergence helpers
+
+
+@REQ
+def test_observed_order_known_values():
+    # error = 3 h^1.7 exactly: slope 1.7
+    h = np.array([0.4, 0.2, 0.1, 0.05])
+    assert el.observed_order(h=h, error=3.0 * h ** 1.7) == pytest.approx(1.7, rel=1e-12)
+    # h = 1, 1/2, 1/4 with errors 1, 0.3, 0.1: log h equally spaced, so the least-squares slope is the end
+    # points' slope (the middle point has zero lever arm): ln(1 / 0.1) / ln(1 / 0.25) = ln 10 / ln 4 = 1.660964047
+    assert el.observed_order(h=[1.0, 0.5, 0.25], error=[1.0, 0.3, 0.1]) == pytest.approx(1.660964047, rel=1e-9)
+    with pytest.raises(ValueError):
+        el.observed_order(h=[1.0], error=[1.0])
+    with pytest.raises(ValueError):
+        el.observed_order(h=[1.0, 0.5], error=[1.0, 0.0])
+
+
+@REQ
+def test_gci_constant_ratio_hand_example():
+    # f = 1 + h^2 on h = 1, 2, 4: phi = 2, 5, 17; e21 = 3, e32 = 12, r = 2, p = ln(12/3)/ln 2 = 2;
+    # extrapolated = (4 * 2 - 5) / 3 = 1; gci_fine = 1.25 * |3 / 2| / 3 = 0.625;
+    # GCI_12 = 1.25 * 3 / 3 = 1.25, GCI_23 = 1.25 * 12 / 3 = 5, ratio = 5 / (4 * 1.25) = 1
+    p, ext, g, ratio = el.gci(h=[1.0, 2.0, 4.0], values=[2.0, 5.0, 17.0])
+    assert (p, ext, g, ratio) == (pytest.approx(2.0, rel=1e-13), pytest.approx(1.0, rel=1e-13),
+                                  pytest.approx(0.625, rel=1e-13), pytest.approx(1.0, rel=1e-13))
+    # grids given coarse first give the same answer
+    assert el.gci(h=[4.0, 2.0, 1.0], values=[17.0, 5.0, 2.0]) == pytest.approx((p, ext, g, ratio), rel=1e-13)
+    # Fs = 3 (Roache's value for two-grid studies) scales the GCI only
+    assert el.gci(h=[1.0, 2.0, 4.0], values=[2.0, 5.0, 17.0], Fs=3.0)[2] == pytest.approx(1.5, rel=1e-13)
+    # oscillatory: phi = 1.0, 1.1, 0.7: e21 = 0.1, e32 = -0.4, s = -1; with r21 = r32 q = 0 and p = ln 4 / ln 2 = 2;
+    # extrapolated = (4 * 1 - 1.1) / 3 = 0.9666667
+    p, ext, _, _ = el.gci(h=[1.0, 2.0, 4.0], values=[1.0, 1.1, 0.7])
+    assert (p, ext) == (pytest.approx(2.0, rel=1e-13), pytest.approx(0.96666666667, rel=1e-10))
+
+
+@REQ
+def test_gci_synthetic_second_order_sequence_with_unequal_ratios():
+    # f = f0 + C h^2, f0 = 1, C = 0.5, h = 0.1, 0.13, 0.2 (r21 = 1.3, r32 = 1.538): the fixed point is p = 2 since
+    # e32 / e21 = r21^2 (r32^2 - 1) / (r21^2 - 1) and q(2) = ln((r21^2 - 1) / (r32^2 - 1));
+    # extrapolated = f0 = 1; gci_fine = 1.25 C h1^2 / phi1 = 1.25 * 0.005 / 1.005 = 6.2189055e-3; ratio 1
+    h = np.array([0.1, 0.13, 0.2])
+    p, ext, g, ratio = el.gci(h=h, values=1.0 + 0.5 * h ** 2)
+    assert p == pytest.approx(2.0, rel=1e-10)
+    assert ext == pytest.approx(1.0, rel=1e-12)
+    assert g == pytest.approx(6.2189055e-3, rel=1e-7)
+    assert ratio == pytest.approx(1.0, rel=1e-10)
+    # an order that is not an integer, decreasing towards f0 from below, strongly unequal ratios
+    h = np.array([0.01, 0.017, 0.05])
+    p, ext, _, ratio = el.gci(h=h, values=3.0 - 2.0 * h ** 1.5)
+    assert p == pytest.approx(1.5, rel=1e-10)
+    assert ext == pytest.approx(3.0, rel=1e-12)
+    assert ratio == pytest.approx(1.0, rel=1e-10)
+    # the observed order of the errors of the same sequence agrees
+    assert el.observed_order(h=h, error=np.abs(3.0 - 2.0 * h ** 1.5 - 3.0)) == pytest.approx(1.5, rel=1e-12)
+
+
+@REQ
+def test_gci_reproduces_the_worked_example_of_celik_et_al():
+    # Celik et al. (2008), Table 1, first column: r21 = 1.5, r32 = 1.333 (N = 18000, 8000, 4500 cells in 2D),
+    # phi = 6.063, 5.972, 5.863; printed p = 1.53, phi_ext = 6.1685, GCI_fine = 2.2 %
+    h = np.array([1.0, 1.5, 2.0])
+    p, ext, g, _ = el.gci(h=h, values=[6.063, 5.972, 5.863])
+    assert p == pytest.approx(1.53, abs=0.005)
+    assert ext == pytest.approx(6.1685, abs=5e-5)
+    assert g == pytest.approx(0.022, abs=5e-4)
+
+
+@REQ
+def test_gci_rejects_bad_input():
+    with pytest.raises(ValueError):  # two grids only
+        el.gci(h=[1.0, 2.0], values=[1.0, 2.0])
+    with pytest.raises(ValueError):  # repeated h
+        el.gci(h=[1.0, 1.0, 2.0], values=[1.0, 2.0, 3.0])
+    with pytest.raises(ValueError):  # no change between the fine grids
+        el.gci(h=[1.0, 2.0, 4.0], values=[1.0, 1.0, 3.0])

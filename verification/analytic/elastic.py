@@ -1,0 +1,428 @@
+"""Closed-form references for plane-strain linear elasticity (deformable blocks, constant-strain triangles).
+
+Independent of the solver: only math and numpy are used, and every formula is either taken from the
+cited text or derived here from Hooke's law, equilibrium and the strain-displacement relations.
+
+Sign conventions: stresses and strains TENSION (extension) POSITIVE. Pressures (p_i, p_o of the Lame
+cylinder) are the one exception: they are positive in compression, as pressures always are, so a
+pressure p on a surface is a normal stress -p. Polar coordinates (r, theta) with theta measured from
+the x axis, anticlockwise; u_r outward, u_theta anticlockwise; sigma_rt is the shear stress on the
+r-face in the theta direction. Plane strain throughout: e_zz = 0, so sigma_zz = nu (sigma_xx + sigma_yy).
+SI units throughout (Pa, m, s, kg/m^3). Every function takes keyword arguments only; stress, strain and
+displacement functions accept numpy arrays (broadcast together) and return arrays.
+
+Elastic constants: E Young's modulus, nu Poisson's ratio (-1 < nu < 1/2), K bulk modulus, G shear
+modulus, lam Lame's first constant, M = lam + 2 G = K + 4 G / 3 the constrained (P-wave) modulus.
+"""
+import math
+
+import numpy as np
+
+
+def _arr(x):
+    return np.asarray(x, dtype=float)
+
+
+def _check_young_poisson(E, nu):
+    E, nu = _arr(E), _arr(nu)
+    if np.any(~(E > 0.0)):
+        raise ValueError(f"E = {E}: Young's modulus must be positive")
+    if np.any(~((nu > -1.0) & (nu < 0.5))):
+        raise ValueError(f"nu = {nu}: Poisson's ratio must lie in (-1, 1/2) for a stable isotropic solid")
+    return E, nu
+
+
+# ---------------------------------------------------------------- elastic constants
+
+
+def lame_from_young(*, E, nu):
+    """(lam, G) from (E, nu):
+
+        lam = E nu / ((1 + nu)(1 - 2 nu)),   G = E / (2 (1 + nu))
+
+    (Timoshenko & Goodier, Theory of Elasticity, 3rd ed., ch. 1, Hooke's law; any elasticity text).
+    """
+    E, nu = _check_young_poisson(E, nu)
+    return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), E / (2.0 * (1.0 + nu))
+
+
+def bulk_shear_from_young(*, E, nu):
+    """(K, G) from (E, nu): K = E / (3 (1 - 2 nu)),  G = E / (2 (1 + nu))."""
+    E, nu = _check_young_poisson(E, nu)
+    return E / (3.0 * (1.0 - 2.0 * nu)), E / (2.0 * (1.0 + nu))
+
+
+def young_poisson_from_bulk_shear(*, K, G):
+    """(E, nu) from (K, G): E = 9 K G / (3 K + G),  nu = (3 K - 2 G) / (2 (3 K + G)).
+
+    The inverse of bulk_shear_from_young. Needs K > 0 and G > 0, else ValueError.
+    """
+    K, G = _arr(K), _arr(G)
+    if np.any(~(K > 0.0)) or np.any(~(G > 0.0)):
+        raise ValueError(f"K = {K}, G = {G}: both moduli must be positive")
+    return 9.0 * K * G / (3.0 * K + G), (3.0 * K - 2.0 * G) / (2.0 * (3.0 * K + G))
+
+
+def constrained_modulus(*, E, nu):
+    """Constrained (oedometric, P-wave) modulus M = lam + 2 G = K + 4 G / 3 = E (1 - nu) / ((1 + nu)(1 - 2 nu)):
+    the ratio sigma_xx / e_xx under uniaxial strain (e_yy = e_zz = 0)."""
+    E, nu = _check_young_poisson(E, nu)
+    return E * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu))
+
+
+def plane_strain_moduli(*, E, nu):
+    """(E', nu') = (E / (1 - nu^2), nu / (1 - nu)): the plane-strain constants with which the 2D in-plane
+    Hooke's law takes the plane-stress form e_xx = (s_xx - nu' s_yy) / E', e_yy = (s_yy - nu' s_xx) / E'
+    (eliminate s_zz = nu (s_xx + s_yy) from the 3D law; Timoshenko & Goodier, ch. 2, plane strain)."""
+    E, nu = _check_young_poisson(E, nu)
+    return E / (1.0 - nu * nu), nu / (1.0 - nu)
+
+
+# ---------------------------------------------------------------- homogeneous plane-strain samples
+
+
+def plane_strain_biaxial(*, E, nu, sigma_xx, sigma_yy):
+    """(e_xx, e_yy, sigma_zz) of a sample under uniform in-plane stresses sigma_xx, sigma_yy (no shear),
+    plane strain e_zz = 0:
+
+        sigma_zz = nu (sigma_xx + sigma_yy),
+        e_xx = ((1 + nu) / E) ((1 - nu) sigma_xx - nu sigma_yy),
+        e_yy = ((1 + nu) / E) ((1 - nu) sigma_yy - nu sigma_xx).
+
+    3D isotropic Hooke's law e_ii = (s_ii - nu (s_jj + s_kk)) / E with e_zz = 0 giving s_zz.
+    """
+    E, nu = _check_young_poisson(E, nu)
+    sxx, syy = _arr(sigma_xx), _arr(sigma_yy)
+    c = (1.0 + nu) / E
+    return c * ((1.0 - nu) * sxx - nu * syy), c * ((1.0 - nu) * syy - nu * sxx), nu * (sxx + syy)
+
+
+def plane_strain_uniaxial(*, E, nu, sigma_yy):
+    """(e_xx, e_yy, sigma_zz) of a sample loaded by sigma_yy with free sides (sigma_xx = 0), e_zz = 0:
+
+        e_xx = -nu (1 + nu) sigma_yy / E,   e_yy = (1 - nu^2) sigma_yy / E,   sigma_zz = nu sigma_yy.
+
+    plane_strain_biaxial with sigma_xx = 0.
+    """
+    return plane_strain_biaxial(E=E, nu=nu, sigma_xx=0.0, sigma_yy=sigma_yy)
+
+
+def young_poisson_from_plane_strain_uniaxial(*, sigma_yy, exx, eyy):
+    """(E, nu) recovered from a plane-strain uniaxial test (sigma_xx = 0, e_zz = 0) with measured
+    sigma_yy, e_xx, e_yy. The test measures the plane-strain constants
+
+        E' = sigma_yy / e_yy = E / (1 - nu^2),   nu' = -e_xx / e_yy = nu / (1 - nu),
+
+    which invert to nu = nu' / (1 + nu'), E = E' (1 - nu^2). Inverse of plane_strain_uniaxial.
+    Needs e_yy != 0 and a result with E > 0, -1 < nu < 1/2, else ValueError.
+    """
+    syy, exx, eyy = _arr(sigma_yy), _arr(exx), _arr(eyy)
+    if np.any(eyy == 0.0):
+        raise ValueError("e_yy = 0: the test gives no stiffness")
+    e_prime = syy / eyy
+    nu_prime = -exx / eyy
+    nu = nu_prime / (1.0 + nu_prime)
+    E = e_prime * (1.0 - nu * nu)
+    _check_young_poisson(E, nu)
+    return E, nu
+
+
+def plane_strain_stress_from_strain(*, exx, eyy, gxy, E, nu):
+    """(sigma_xx, sigma_yy, sigma_xy, sigma_zz) from the in-plane strains, e_zz = 0:
+
+        s_xx = lam (e_xx + e_yy) + 2 G e_xx,   s_yy = lam (e_xx + e_yy) + 2 G e_yy,
+        s_xy = G gamma_xy,                      s_zz = lam (e_xx + e_yy) = nu (s_xx + s_yy),
+
+    gamma_xy = 2 e_xy the engineering shear strain (isotropic Hooke's law, lam and G as lame_from_young).
+    """
+    lam, G = lame_from_young(E=E, nu=nu)
+    exx, eyy, gxy = _arr(exx), _arr(eyy), _arr(gxy)
+    vol = lam * (exx + eyy)
+    return vol + 2.0 * G * exx, vol + 2.0 * G * eyy, G * gxy, vol
+
+
+# ---------------------------------------------------------------- patch test
+
+
+def linear_displacement_field(*, x, y, a0, a1, a2, b0, b1, b2):
+    """(u_x, u_y) = (a0 + a1 x + a2 y, b0 + b1 x + b2 y): the linear field every constant-strain
+    element must reproduce exactly (patch test; Zienkiewicz & Taylor, The Finite Element Method,
+    vol. 1, the patch test)."""
+    x, y = _arr(x), _arr(y)
+    return a0 + a1 * x + a2 * y, b0 + b1 * x + b2 * y
+
+
+def stress_from_linear_field(*, a1, a2, b1, b2, E, nu):
+    """Constant plane-strain stresses (sigma_xx, sigma_yy, sigma_xy, sigma_zz) of linear_displacement_field:
+    strains e_xx = a1, e_yy = b2, gamma_xy = a2 + b1 (the rotation (b1 - a2) / 2 carries no stress),
+    then plane_strain_stress_from_strain."""
+    return plane_strain_stress_from_strain(exx=a1, eyy=b2, gxy=_arr(a2) + _arr(b1), E=E, nu=nu)
+
+
+# ---------------------------------------------------------------- Lame thick-walled cylinder
+
+
+def lame_cylinder(*, r, a, b, p_i, p_o, E, nu):
+    """(sigma_rr, sigma_tt, sigma_zz, u_r) in a thick-walled cylinder a <= r <= b under inner pressure p_i
+    and outer pressure p_o (pressures positive in compression), plane strain:
+
+        sigma_rr = A - B / r^2,   sigma_tt = A + B / r^2,   sigma_zz = nu (sigma_rr + sigma_tt) = 2 nu A,
+        A = (p_i a^2 - p_o b^2) / (b^2 - a^2),   B = (p_i - p_o) a^2 b^2 / (b^2 - a^2),
+        u_r = ((1 + nu) / E) ((1 - 2 nu) A r + B / r).
+
+    Lame's problem: Timoshenko & Goodier, Theory of Elasticity, 3rd ed. (1970), ch. 4, "stress distribution
+    symmetrical about an axis" (the thick-walled cylinder; the article number differs between editions)
+    for the stresses, written here tension positive so that sigma_rr(a) = -p_i and sigma_rr(b) = -p_o.
+    u_r is derived here from the plane-strain hoop strain u_r / r = ((1 + nu) / E)((1 - nu) s_tt - nu s_rr),
+    measured from the unloaded state. b = numpy.inf is allowed: A = -p_o, B = (p_i - p_o) a^2 (a hole in
+    an infinite medium; written with a^2 / b^2 so the limit is exact). r outside [a, b] is a ValueError.
+    """
+    r = _arr(r)
+    E, nu = _check_young_poisson(E, nu)
+    if not 0.0 < a < b:
+        raise ValueError(f"a = {a}, b = {b}: need 0 < a < b")
+    if np.any(r < a * (1.0 - 1e-12)) or np.any(r > b * (1.0 + 1e-12)):
+        raise ValueError("r lies outside the wall a <= r <= b")
+    q = (a / b) ** 2  # 0 when b is infinite
+    A = (p_i * q - p_o) / (1.0 - q)
+    B = (p_i - p_o) * a * a / (1.0 - q)
+    srr = A - B / r ** 2
+    stt = A + B / r ** 2
+    szz = nu * (srr + stt)
+    ur = (1.0 + nu) / E * ((1.0 - 2.0 * nu) * A * r + B / r)
+    return srr, stt, szz, ur
+
+
+# ---------------------------------------------------------------- Kirsch: circular hole in an infinite plate
+
+
+def _kirsch_polar(r, theta, a, S_x, S_y):
+    r, theta = np.broadcast_arrays(_arr(r), _arr(theta))
+    if not a > 0.0:
+        raise ValueError(f"a = {a}: the hole radius must be positive")
+    if np.any(r < a * (1.0 - 1e-12)):
+        raise ValueError("r < a: the point lies inside the hole")
+    P, Q = 0.5 * (S_x + S_y), 0.5 * (S_x - S_y)
+    q2 = (a / r) ** 2
+    q4 = q2 * q2
+    c2, s2 = np.cos(2.0 * theta), np.sin(2.0 * theta)
+    srr = P * (1.0 - q2) + Q * (1.0 - 4.0 * q2 + 3.0 * q4) * c2
+    stt = P * (1.0 + q2) - Q * (1.0 + 3.0 * q4) * c2
+    srt = -Q * (1.0 + 2.0 * q2 - 3.0 * q4) * s2
+    return r, theta, srr, stt, srt
+
+
+def _polar_to_cartesian_stress(theta, srr, stt, srt):
+    c, s = np.cos(theta), np.sin(theta)
+    sxx = srr * c * c + stt * s * s - 2.0 * srt * s * c
+    syy = srr * s * s + stt * c * c + 2.0 * srt * s * c
+    sxy = (srr - stt) * s * c + srt * (c * c - s * s)
+    return sxx, syy, sxy
+
+
+def _kirsch_displacement(r, theta, a, S_x, S_y, E, nu):
+    E, nu = _check_young_poisson(E, nu)
+    G = E / (2.0 * (1.0 + nu))
+    kappa = 3.0 - 4.0 * nu
+    P, Q = 0.5 * (S_x + S_y), 0.5 * (S_x - S_y)
+    ur = (P / (4.0 * G) * ((kappa - 1.0) * r + 2.0 * a * a / r)
+          + Q / (2.0 * G) * (r + (kappa + 1.0) * a * a / r - a ** 4 / r ** 3) * np.cos(2.0 * theta))
+    ut = -Q / (2.0 * G) * (r + (kappa - 1.0) * a * a / r + a ** 4 / r ** 3) * np.sin(2.0 * theta)
+    return ur, ut
+
+
+def kirsch(*, r, theta, a, S_x, S_y, E=None, nu=None):
+    """Stresses (and, given E and nu, plane-strain displacements) around a traction-free circular hole of
+    radius a in an infinite plate under far-field sigma_xx = S_x, sigma_yy = S_y, tau_xy = 0 (tension
+    positive; for principal far-field stresses at an angle, rotate theta). Returns a dict of arrays:
+
+        'srr', 'stt', 'srt'   polar stresses,
+        'sxx', 'syy', 'sxy'   the same in Cartesian components (to impose exact tractions or stresses on
+                              the outer boundary of a truncated mesh),
+        'ur', 'ut'            displacements, only when E and nu are given.
+
+    With P = (S_x + S_y) / 2, Q = (S_x - S_y) / 2 (Kirsch 1898, Z. VDI 42, 797-807; Timoshenko & Goodier,
+    Theory of Elasticity, 3rd ed., ch. 4, "effect of circular holes on stress distributions in plates";
+    Jaeger, Cook & Zimmerman, Fundamentals of Rock Mechanics, 4th ed., ch. 8, there compression positive):
+
+        srr = P (1 - a^2/r^2) + Q (1 - 4 a^2/r^2 + 3 a^4/r^4) cos 2 theta,
+        stt = P (1 + a^2/r^2) - Q (1 + 3 a^4/r^4) cos 2 theta,
+        srt = -Q (1 + 2 a^2/r^2 - 3 a^4/r^4) sin 2 theta.
+
+    At the wall stt = 2 P - 4 Q cos 2 theta: for S_x = S, S_y = 0, 3 S at theta = 90 deg and -S at 0.
+
+    Displacements, plane strain, kappa = 3 - 4 nu, G = E / (2 (1 + nu)), measured from the stress-free
+    state of the plate (so they include the far-field uniform strain, u ~ r e_inf as r -> inf):
+
+        u_r = P / (4 G) ((kappa - 1) r + 2 a^2/r) + Q / (2 G) (r + (kappa + 1) a^2/r - a^4/r^3) cos 2 theta,
+        u_t = -Q / (2 G) (r + (kappa - 1) a^2/r + a^4/r^3) sin 2 theta.
+
+    Derived here by integrating the plane-strain strains e_rr = ((1 - nu) s_rr - nu s_tt) / (2 G) in r and
+    e_tt = (u_r + du_t/dtheta) / r in theta, the integration functions fixed by the symmetry about both
+    axes and by the far field; the shear strain then reproduces srt / G exactly. The axisymmetric part is
+    Lame's u_r = ((1 - 2 nu) P r + P a^2 / r) / (2 G) (note (kappa - 1)/4 = (1 - 2 nu)/2). Compare the
+    displacement solutions for the hole in Jaeger, Cook & Zimmerman, ch. 8 (compression positive there).
+    kappa = 3 - 4 nu is the plane-strain value; the plane-stress kappa = (3 - nu) / (1 + nu) must not be used
+    here. r < a is a ValueError.
+    """
+    r, theta, srr, stt, srt = _kirsch_polar(r, theta, a, S_x, S_y)
+    sxx, syy, sxy = _polar_to_cartesian_stress(theta, srr, stt, srt)
+    out = {"srr": srr, "stt": stt, "srt": srt, "sxx": sxx, "syy": syy, "sxy": sxy}
+    if (E is None) != (nu is None):
+        raise ValueError("give both E and nu for the displacements, or neither")
+    if E is not None:
+        out["ur"], out["ut"] = _kirsch_displacement(r, theta, a, S_x, S_y, E, nu)
+    return out
+
+
+def kirsch_cartesian_stress(*, x, y, a, S_x, S_y):
+    """(sigma_xx, sigma_yy, sigma_xy) of kirsch at Cartesian points (x, y), hole centred at the origin."""
+    x, y = _arr(x), _arr(y)
+    res = kirsch(r=np.hypot(x, y), theta=np.arctan2(y, x), a=a, S_x=S_x, S_y=S_y)
+    return res["sxx"], res["syy"], res["sxy"]
+
+
+def kirsch_cartesian_displacement(*, x, y, a, S_x, S_y, E, nu):
+    """(u_x, u_y) of kirsch at Cartesian points (x, y), hole centred at the origin, plane strain:
+    u_x = u_r cos theta - u_t sin theta,  u_y = u_r sin theta + u_t cos theta."""
+    x, y = _arr(x), _arr(y)
+    theta = np.arctan2(y, x)
+    res = kirsch(r=np.hypot(x, y), theta=theta, a=a, S_x=S_x, S_y=S_y, E=E, nu=nu)
+    c, s = np.cos(theta), np.sin(theta)
+    return res["ur"] * c - res["ut"] * s, res["ur"] * s + res["ut"] * c
+
+
+# ---------------------------------------------------------------- waves in an elastic column
+
+
+def p_wave_speed(*, K, G, rho):
+    """Dilatational wave speed c_p = sqrt((K + 4 G / 3) / rho) = sqrt(M / rho).
+
+    Assumes uniaxial strain: a plane wave in an unbounded medium, or a column whose sides are held
+    laterally (rollers) so that e_yy = e_zz = 0 and the stiffness is the constrained modulus M
+    (dilatational waves in an unbounded medium: Kolsky, Stress Waves in Solids, 1953; Graff, Wave Motion in
+    Elastic Solids, 1975). A column with free sides carries the slower bar wave instead
+    (plane_strain_bar_wave_speed).
+    """
+    K, G, rho = _arr(K), _arr(G), _arr(rho)
+    return np.sqrt((K + 4.0 * G / 3.0) / rho)
+
+
+def s_wave_speed(*, G, rho):
+    """Shear (distortional) wave speed c_s = sqrt(G / rho) (Kolsky, Stress Waves in Solids; Graff, op. cit.)."""
+    return np.sqrt(_arr(G) / _arr(rho))
+
+
+def plane_strain_bar_wave_speed(*, E, nu, rho):
+    """Long-wavelength speed in a plane-strain column with free sides (sigma_xx = 0 across, e_zz = 0):
+    c = sqrt(E' / rho), E' = E / (1 - nu^2) (the 1D bar-velocity argument with the plane-strain
+    modulus of plane_strain_uniaxial; valid for wavelengths much longer than the column width)."""
+    e_prime, _ = plane_strain_moduli(E=E, nu=nu)
+    return np.sqrt(e_prime / _arr(rho))
+
+
+def step_pulse_arrival(*, x, t, c, v0=1.0):
+    """(t_arrival, v) for a semi-infinite column whose end x = 0 is driven at constant velocity v0
+    from t = 0 (a step in velocity), 1D wave equation with speed c:
+
+        t_arrival = x / c,    v(x, t) = v0 H(t - x / c),   H(0) = 1/2.
+
+    d'Alembert solution of u_tt = c^2 u_xx with a right-running wave only (quiescent column, no
+    reflection). v is the particle velocity along +x.
+    """
+    x, t = _arr(x), _arr(t)
+    arrival = x / c
+    return arrival, v0 * np.heaviside(t - arrival, 0.5)
+
+
+def step_pulse_stress(*, x, t, c, v0, rho):
+    """Axial stress behind the step front of step_pulse_arrival, tension positive:
+
+        sigma(x, t) = -rho c v0 H(t - x / c),   H(0) = 1/2.
+
+    For a right-running wave v = f(t - x/c), momentum rho v_t = sigma_x gives sigma = -rho c v (the
+    impedance relation of 1D wave propagation, e.g. Graff, Wave Motion in Elastic Solids): pushing the
+    end into the column (v0 > 0) puts it in compression (sigma < 0), pulling it (v0 < 0) in tension.
+    rho c is the impedance of the wave the column carries: c = p_wave_speed for a laterally confined
+    column, in which case sigma = M e with e = -v / c.
+    """
+    _, v = step_pulse_arrival(x=x, t=t, c=c, v0=v0)
+    return -_arr(rho) * c * v
+
+
+# ---------------------------------------------------------------- convergence: observed order, Richardson, GCI
+
+
+def observed_order(*, h, error):
+    """Observed order of convergence: the least-squares slope of log(error) against log(h) over all the
+    given levels (error = C h^p). Needs at least two distinct h and positive errors, else ValueError."""
+    h, error = np.ravel(_arr(h)), np.ravel(_arr(error))
+    if h.size != error.size or h.size < 2 or np.unique(h).size < 2:
+        raise ValueError("need at least two levels with distinct h, one error per level")
+    if np.any(~(h > 0.0)) or np.any(~(error > 0.0)):
+        raise ValueError("h and error must be positive to take logarithms")
+    slope, _ = np.polyfit(np.log(h), np.log(error), 1)
+    return float(slope)
+
+
+def gci(*, h, values, Fs=1.25, tol=1e-12, max_iter=1000):
+    """Richardson extrapolation and the Grid Convergence Index from three grids.
+
+    Returns (p, extrapolated, gci_fine, asymptotic_ratio). h and values may come in any order; with
+    h1 < h2 < h3 (grid 1 the finest) and phi_k the values, following Celik, Ghia, Roache, Freitas, Coleman & Raad,
+    "Procedure for estimation and reporting of uncertainty due to discretization in CFD applications",
+    ASME J. Fluids Eng. 130 (2008) 078001, which puts Roache's GCI (Roache, Verification and Validation in
+    Computational Science and Engineering, Hermosa, 1998) into steps:
+
+        r21 = h2 / h1,  r32 = h3 / h2,  e21 = phi2 - phi1,  e32 = phi3 - phi2,  s = sign(e32 / e21),
+        p = |ln|e32 / e21| + q(p)| / ln r21,   q(p) = ln((r21^p - s) / (r32^p - s)),
+
+    solved by fixed-point iteration from q = 0 (when r21 = r32, q = 0 and p is explicit);
+
+        extrapolated = (r21^p phi1 - phi2) / (r21^p - 1),
+        gci_fine     = Fs |(phi1 - phi2) / phi1| / (r21^p - 1)        (relative, a fraction of phi1;
+                                                                     times |phi1| gives the absolute band).
+
+    asymptotic_ratio = GCI_23 / (r21^p GCI_12), Roache's check that the grids are in the asymptotic range
+    (about 1 when they are): GCI_12 = Fs |e21| / (r21^p - 1) and GCI_23 = Fs |e32| / (r32^p - 1), both in
+    absolute form, so that for phi = phi0 + C h^p the ratio is exactly 1 (the relative forms differ by the
+    factor phi1 / phi2 = 1 + O(h^p)). The ratio compares GCI_23 with r21^p GCI_12 since the error bands
+    scale as h2^p / h1^p.
+
+    s < 0 (oscillatory convergence) is computed as Celik et al. do but should be reported as such.
+    ValueError for fewer or more than three grids, repeated h, e21 = 0 or e32 = 0 (no order can be
+    observed), phi1 = 0 (no relative GCI), or an iteration that does not converge.
+    """
+    h, values = np.ravel(_arr(h)), np.ravel(_arr(values))
+    if h.size != 3 or values.size != 3:
+        raise ValueError("gci needs exactly three grids: three h and three values")
+    if np.any(~(h > 0.0)) or np.unique(h).size != 3:
+        raise ValueError("the three h must be positive and distinct")
+    order = np.argsort(h)
+    h1, h2, h3 = h[order]
+    phi1, phi2, phi3 = values[order]
+    r21, r32 = h2 / h1, h3 / h2
+    e21, e32 = phi2 - phi1, phi3 - phi2
+    if e21 == 0.0 or e32 == 0.0:
+        raise ValueError("two grids give the same value: no order can be observed")
+    if phi1 == 0.0:
+        raise ValueError("phi1 = 0: the relative GCI is undefined")
+    s = math.copysign(1.0, e32 / e21)
+    ln_ratio = math.log(abs(e32 / e21))
+    ln_r21 = math.log(r21)
+    p = abs(ln_ratio) / ln_r21
+    for _ in range(max_iter):
+        q = math.log((r21 ** p - s) / (r32 ** p - s))
+        p_new = abs(ln_ratio + q) / ln_r21
+        if abs(p_new - p) <= tol * max(1.0, abs(p_new)):
+            p = p_new
+            break
+        p = p_new
+    else:
+        raise ValueError(f"the fixed-point iteration for p did not converge in {max_iter} iterations")
+    f21, f32 = r21 ** p, r32 ** p
+    extrapolated = (f21 * phi1 - phi2) / (f21 - 1.0)
+    gci_fine = Fs * abs(e21 / phi1) / (f21 - 1.0)
+    gci_12 = Fs * abs(e21) / (f21 - 1.0)
+    gci_23 = Fs * abs(e32) / (f32 - 1.0)
+    return p, float(extrapolated), float(gci_fine), float(gci_23 / (f21 * gci_12))
