@@ -66,81 +66,121 @@ std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m
 void ContactDetection::scan(Model& m) {
   ++scans_;
   motionSinceScan_ = 0.0;
-  std::vector<Contact> previous = std::move(m.contacts);
-  std::sort(previous.begin(), previous.end(),
-            [](const Contact& a, const Contact& b) { return Key{a.corner, a.blockB} < Key{b.corner, b.blockB}; });
-  std::vector<Contact> found;
-  auto addCornersOf = [&](int a, int b) {
+  // Contacts persist by key (corner, block B); the previous list is looked up through a sorted
+  // index so that the contacts themselves are not moved.
+  const std::vector<Contact>& previous = m.contacts;
+  std::vector<std::pair<Key, int>> previousIndex(previous.size());
+  for (std::size_t i = 0; i < previous.size(); ++i)
+    previousIndex[i] = {Key{previous[i].corner, previous[i].blockB}, static_cast<int>(i)};
+  auto byKey = [](const auto& a, const auto& b) { return a.first < b.first; };
+  // In order already unless a contact was handed over to the other corner since the last scan.
+  if (!std::is_sorted(previousIndex.begin(), previousIndex.end(), byKey))
+    std::sort(previousIndex.begin(), previousIndex.end(), byKey);
+  // Candidates come in ascending key order, so the previous contact with the same key is found
+  // by walking forward through the sorted index.
+  std::size_t walk = 0;
+  auto findPrevious = [&](int corner, int blockB) -> const Contact* {
+    const Key k{corner, blockB};
+    while (walk < previousIndex.size() && previousIndex[walk].first < k) ++walk;
+    return (walk < previousIndex.size() && previousIndex[walk].first == k) ? &previous[previousIndex[walk].second]
+                                                                            : nullptr;
+  };
+
+  struct Candidate {
+    int corner, blockA, blockB;
+    FeatureHit hit;
+    const Contact* existing;  // the contact with this key before the scan, if any
+  };
+  // Neighbours per block, ascending, so that walking blocks, their corners and then their
+  // neighbours produces candidates already in key order (corner, block B).
+  const auto pairs = candidatePairs(m);
+  const int n = m.blocks.size();
+  std::vector<int> neighbourStart(n + 1, 0), neighbours(2 * pairs.size());
+  for (const auto& [a, b] : pairs) {
+    ++neighbourStart[a + 1];
+    ++neighbourStart[b + 1];
+  }
+  for (int b = 0; b < n; ++b) neighbourStart[b + 1] += neighbourStart[b];
+  {
+    std::vector<int> fill(neighbourStart.begin(), neighbourStart.end() - 1);
+    for (const auto& [a, b] : pairs) {  // pairs are sorted, so each list comes out ascending
+      neighbours[fill[a]++] = b;
+      neighbours[fill[b]++] = a;
+    }
+    for (int b = 0; b < n; ++b) std::sort(neighbours.begin() + neighbourStart[b], neighbours.begin() + neighbourStart[b + 1]);
+  }
+  std::vector<Candidate> found;
+  // A corner within the tolerance of B has its vertex within tolerance + d of B's polygon (the
+  // rounded tip lies less than d inside the vertex): a box test rejects the others cheaply.
+  const double reach = m.contactTolerance + m.roundingLength - 0.5 * m.contactTolerance;
+  for (int a = 0; a < n; ++a) {
     const int first = m.blocks.firstVertex[a], last = first + m.blocks.vertexCount[a];
     for (int v = first; v < last; ++v) {
-      const FeatureHit hit = nearestFeature(m, v, b);
-      if (!(hit.overlap >= -m.contactTolerance)) continue;
-      Contact c;
-      c.corner = v;
-      c.blockA = a;
-      c.blockB = b;
-      c.feature = hit.feature;
-      c.featureKind = hit.kind;
-      c.normal = hit.normal;
-      c.point = hit.point;
-      c.overlap = hit.overlap;
-      found.push_back(c);
+      const Vec2 p = m.vertices.position[v];
+      for (int k = neighbourStart[a]; k < neighbourStart[a + 1]; ++k) {
+        const int b = neighbours[k];
+        if (p.x < minX_[b] - reach || p.x > maxX_[b] + reach || p.y < minY_[b] - reach || p.y > maxY_[b] + reach)
+          continue;
+        const FeatureHit hit = nearestFeature(m, v, b);
+        if (hit.overlap >= -m.contactTolerance) found.push_back({v, a, b, hit, findPrevious(v, b)});
+      }
     }
-  };
-  for (const auto& [a, b] : candidatePairs(m)) {
-    addCornersOf(a, b);
-    addCornersOf(b, a);
   }
-  std::sort(found.begin(), found.end(),
-            [](const Contact& a, const Contact& b) { return Key{a.corner, a.blockB} < Key{b.corner, b.blockB}; });
+  // The candidates of each vertex are contiguous (found is in key order): index them by vertex.
+  std::vector<int> firstOfVertex(m.vertices.size() + 1, 0);
+  for (const Candidate& f : found) ++firstOfVertex[f.corner + 1];
+  for (int v = 0; v < m.vertices.size(); ++v) firstOfVertex[v + 1] += firstOfVertex[v];
+  auto findFound = [&](int corner, int blockB) -> const Candidate* {
+    for (int i = firstOfVertex[corner]; i < firstOfVertex[corner + 1]; ++i)
+      if (found[i].blockB == blockB) return &found[i];
+    return nullptr;
+  };
 
   // Two corners at one spot can each see the other: keep one contact for the pair. A corner
   // that sees the other corner yields to that corner's contact on this block when the other
   // corner sees an edge (it is the one pressed into a face) or another corner. Of two mutual
   // corner-corner contacts the one that already exists stays, so that its state is kept; of two
   // new ones, the one owned by the lower vertex id.
-  auto findIn = [](const std::vector<Contact>& list, int corner, int blockB) -> const Contact* {
-    auto it = std::lower_bound(list.begin(), list.end(), Key{corner, blockB},
-                               [](const Contact& c, const Key& k) { return Key{c.corner, c.blockB} < k; });
-    return (it != list.end() && Key{it->corner, it->blockB} == Key{corner, blockB}) ? &*it : nullptr;
-  };
+  const bool initial = m.cycle == 0;
+  const double touching = 1e-6 * m.roundingLength;
   std::vector<Contact> kept;
   kept.reserve(found.size());
-  for (const Contact& c : found) {
-    if (c.featureKind == FeatureKind::Corner) {
-      const Contact* reverse = findIn(found, c.feature, c.blockA);
-      if (reverse) {
-        const bool mutual = reverse->featureKind == FeatureKind::Corner && reverse->feature == c.corner;
+  std::vector<char> carried(previous.size(), 0);
+  for (const Candidate& f : found) {
+    if (f.hit.kind == FeatureKind::Corner) {
+      if (const Candidate* reverse = findFound(f.hit.feature, f.blockA)) {
+        const bool mutual = reverse->hit.kind == FeatureKind::Corner && reverse->hit.feature == f.corner;
         if (!mutual) continue;
-        const bool cExisted = findIn(previous, c.corner, c.blockB) != nullptr;
-        const bool reverseExisted = findIn(previous, reverse->corner, reverse->blockB) != nullptr;
-        if (cExisted != reverseExisted ? reverseExisted : reverse->corner < c.corner) continue;
+        const bool existed = f.existing != nullptr, reverseExisted = reverse->existing != nullptr;
+        if (existed != reverseExisted ? reverseExisted : reverse->corner < f.corner) continue;
       }
     }
-    kept.push_back(c);
-  }
-
-  // Carry the state of contacts that persist; initialise the new ones. A joint contact's
-  // stress is its spring's from zero overlap: stress-free where the faces touch, the stress of
-  // the face around it where it appears under load, open where found at a gap.
-  const bool initial = m.cycle == 0;
-  std::size_t p = 0;
-  for (Contact& c : kept) {
-    while (p < previous.size() && Key{previous[p].corner, previous[p].blockB} < Key{c.corner, c.blockB}) ++p;
-    if (p < previous.size() && Key{previous[p].corner, previous[p].blockB} == Key{c.corner, c.blockB}) {
-      c = previous[p];
-      previous[p].slipDissipation = 0.0;  // carried, not deleted
+    // Carry the state of a contact that persists.
+    if (const Contact* old = f.existing) {
+      carried[old - previous.data()] = 1;
+      kept.push_back(*old);
       continue;
     }
+    // A new contact. A joint contact's stress is its spring's from zero overlap: stress-free
+    // where the faces touch, the stress of the face around it where it appears under load,
+    // open where found at a gap.
+    Contact c;
+    c.corner = f.corner;
+    c.blockA = f.blockA;
+    c.blockB = f.blockB;
+    c.feature = f.hit.feature;
+    c.featureKind = f.hit.kind;
+    c.normal = f.hit.normal;
+    c.point = f.hit.point;
+    c.overlap = f.hit.overlap;
     c.joint = m.jointMaterialFor(c.blockA, c.blockB);
     const JointMaterial& j = m.jointMaterials[c.joint];
-    c.length = contactLength(m, c.corner, {c.feature, c.featureKind, c.normal, c.point, c.overlap});
+    c.length = contactLength(m, c.corner, f.hit);
     c.elasticNormalStress = j.kn * c.overlap;
     c.open = c.overlap < 0.0;
     // Model #5: only contacts present at the start are bonded rock; faces that come together
     // later have no cohesion or tensile strength.
     c.intact = initial || j.law != JointLaw::CoulombFracture;
-    const double touching = 1e-6 * m.roundingLength;
     if (initial && c.overlap > touching) {
       std::ostringstream s;
       s << "blocks '" << m.blocks.name[c.blockA] << "' and '" << m.blocks.name[c.blockB]
@@ -152,8 +192,10 @@ void ContactDetection::scan(Model& m) {
       c.elasticNormalStress = 0.0;  // faces touching at the start: closed and stress-free
       c.open = false;
     }
+    kept.push_back(c);
   }
-  for (const Contact& old : previous) m.deletedSlipDissipation += old.slipDissipation;
+  for (std::size_t i = 0; i < previous.size(); ++i)
+    if (!carried[i]) m.deletedSlipDissipation += previous[i].slipDissipation;
   m.contacts = std::move(kept);
 }
 
