@@ -171,7 +171,6 @@ void ContactDetection::scan(Model& m) {
     c.feature = f.hit.feature;
     c.featureKind = f.hit.kind;
     c.normal = f.hit.normal;
-    c.point = f.hit.point;
     c.overlap = f.hit.overlap;
     c.joint = m.jointMaterialFor(c.blockA, c.blockB);
     const JointMaterial& j = m.jointMaterials[c.joint];

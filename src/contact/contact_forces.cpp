@@ -64,12 +64,11 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     c.feature = hit.feature;
     c.featureKind = hit.kind;
     c.normal = hit.normal;
-    c.point = hit.point;
     c.overlap = hit.overlap;
     if (c.overlap > overlapLimit) reportOverlap(m, c, i);
 
     const int a = c.blockA, b = c.blockB;
-    const Vec2 ra = c.point - bl.centroid[a], rb = c.point - bl.centroid[b];
+    const Vec2 ra = hit.point - bl.centroid[a], rb = hit.point - bl.centroid[b];
     // Velocities are those of the half step just ended, so v dt is this step's increment.
     const Vec2 va = bl.velocity[a] + bl.angularVelocity[a] * perp(ra);
     const Vec2 vb = bl.velocity[b] + bl.angularVelocity[b] * perp(rb);
@@ -80,15 +79,14 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     // The length matters only while the contact carries stress.
     const double work = updateJointStresses(j, c, dun, dus);
     if (!c.open) c.length = contactLength(m, c.corner, hit);
-    const double weight = j.law == JointLaw::PointContact ? 1.0 : c.length;
+    const double weight = contactWeight(j, c);
     c.slipDissipation += weight * work;
-    c.normalForce = weight * c.normalStress;
-    c.shearForce = weight * c.shearStress;
+    const double fn = weight * c.normalStress, fs = weight * c.shearStress;
     c.normalDisplacement += dun;
     c.shearDisplacement += dus;
 
     // Force on A from B; the shear force resists A's motion along the tangent.
-    const Vec2 f = c.normalForce * c.normal - c.shearForce * tangent;
+    const Vec2 f = fn * c.normal - fs * tangent;
     bl.force[a] += f;
     bl.moment[a] += cross(ra, f);
     bl.force[b] -= f;
@@ -96,7 +94,7 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
 
     if (!c.open) {
       totals.strainEnergy += 0.5 * weight * (c.normalStress * c.normalStress / j.kn + c.shearStress * c.shearStress / j.ks);
-      totals.sumForceMagnitude += std::sqrt(c.normalForce * c.normalForce + c.shearForce * c.shearForce);
+      totals.sumForceMagnitude += std::sqrt(fn * fn + fs * fs);
       ++totals.closedContacts;
     }
   }

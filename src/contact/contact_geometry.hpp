@@ -33,4 +33,10 @@ FeatureHit followFeature(const Model& model, int corner, int blockB, int feature
 // edge's line); the rounding length d for a corner touching alone.
 double contactLength(const Model& model, int corner, const FeatureHit& hit);
 
+// Where a contact's force acts: midway between the two surfaces along the normal, which for
+// every feature kind is the corner's arc centre less (arc radius - overlap / 2) along the normal.
+inline Vec2 contactPoint(const Model& model, const Contact& c) {
+  return model.vertices.arcCentre[c.corner] - (model.vertices.arcRadius[c.corner] - 0.5 * c.overlap) * c.normal;
+}
+
 }  // namespace vdec

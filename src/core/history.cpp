@@ -52,8 +52,8 @@ double jointMeasure(const Model& m, const HistorySpec& h) {
     const bool between = (c.blockA == h.block && c.blockB == h.otherBlock) ||
                          (c.blockA == h.otherBlock && c.blockB == h.block);
     if (!between) continue;
-    normalForce += c.normalForce;
-    shearForce += c.shearForce;
+    normalForce += m.normalForce(c);
+    shearForce += m.shearForce(c);
     if (!c.open) length += c.length;
     un += c.normalDisplacement;
     us += c.shearDisplacement;

@@ -93,14 +93,11 @@ struct Contact {
   FeatureKind featureKind = FeatureKind::Edge;
   int joint = -1;           // joint material
   Vec2 normal;              // unit, from B towards A
-  Vec2 point;               // where the force acts
   double overlap = 0.0;     // geometric, positive when the rounded shapes interpenetrate
   double length = 0.0;      // contact length L (1.3-2), m
   double elasticNormalStress = 0.0;  // what the normal spring alone would carry (< 0 in tension or open)
   double normalStress = 0.0;         // sn, compression positive
   double shearStress = 0.0;          // tau, along tangent t = (n.y, -n.x)
-  double normalForce = 0.0;          // Fn = sn L, N/m
-  double shearForce = 0.0;           // Fs = tau L
   double normalDisplacement = 0.0;   // accumulated, closing positive
   double shearDisplacement = 0.0;    // accumulated, along t
   double slipDissipation = 0.0;      // J/m
@@ -108,6 +105,12 @@ struct Contact {
   bool intact = true;       // model #5: cohesion and tensile strength not yet destroyed
   bool slipping = false;
 };
+
+// The weight that turns a contact's stresses into forces (Fn = w sn, Fs = w tau): the contact
+// length for the joint laws, 1 for the point-contact law.
+inline double contactWeight(const JointMaterial& j, const Contact& c) {
+  return j.law == JointLaw::PointContact ? 1.0 : c.length;
+}
 
 struct Model {
   std::vector<BlockMaterial> blockMaterials;
@@ -127,6 +130,8 @@ struct Model {
   long long cycle = 0;
 
   int jointMaterialFor(int a, int b) const;
+  double normalForce(const Contact& c) const { return contactWeight(jointMaterials[c.joint], c) * c.normalStress; }
+  double shearForce(const Contact& c) const { return contactWeight(jointMaterials[c.joint], c) * c.shearStress; }
 };
 
 }  // namespace vdec

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "contact/contact_geometry.hpp"
 #include "core/errors.hpp"
 #include "io/build_info.hpp"
 
@@ -91,18 +92,19 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
   j["blocks"] = blocks;
   json contacts = json::array();
   for (const Contact& c : m.contacts) {
+    const Vec2 point = contactPoint(m, c);
     contacts.push_back({{"block_a", m.blocks.name[c.blockA]},
                         {"corner", c.corner - m.blocks.firstVertex[c.blockA]},
                         {"block_b", m.blocks.name[c.blockB]},
                         {"kind", c.featureKind == FeatureKind::Edge ? "corner-edge" : "corner-corner"},
                         {"joint", m.jointMaterials[c.joint].name},
                         {"law", jointLawName(m.jointMaterials[c.joint].law)},
-                        {"point", {c.point.x, c.point.y}},
+                        {"point", {point.x, point.y}},
                         {"normal", {c.normal.x, c.normal.y}},
                         {"length", c.length},
                         {"overlap", c.overlap},
-                        {"normal_force", c.normalForce},
-                        {"shear_force", c.shearForce},
+                        {"normal_force", m.normalForce(c)},
+                        {"shear_force", m.shearForce(c)},
                         {"normal_displacement", c.normalDisplacement},
                         {"shear_displacement", c.shearDisplacement},
                         {"open", c.open},

@@ -129,7 +129,7 @@ vertices = [[0.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]]
   detection.initialise(s.model);
   EXPECT_EQ(s.model.contacts.size(), 2u);
   double length = 0.0;
-  for (const Contact& c : s.model.contacts) length += c.length > 0 ? c.length : contactLength(s.model, c.corner, {c.feature, c.featureKind, c.normal, c.point, c.overlap});
+  for (const Contact& c : s.model.contacts) length += c.length > 0 ? c.length : contactLength(s.model, c.corner, {c.feature, c.featureKind, c.normal, contactPoint(s.model, c), c.overlap});
   EXPECT_NEAR(length, 1.0, 1e-9);
 }
 

@@ -103,5 +103,5 @@ TEST(RigidMotion, SameSceneGivesBitwiseIdenticalResults) {
   EXPECT_EQ(a.blocks.centroid[1].y, b.blocks.centroid[1].y);
   EXPECT_EQ(a.blocks.rotation[1], b.blocks.rotation[1]);
   ASSERT_EQ(a.contacts.size(), b.contacts.size());
-  for (std::size_t i = 0; i < a.contacts.size(); ++i) EXPECT_EQ(a.contacts[i].normalForce, b.contacts[i].normalForce);
+  for (std::size_t i = 0; i < a.contacts.size(); ++i) EXPECT_EQ(a.contacts[i].normalStress, b.contacts[i].normalStress);
 }
