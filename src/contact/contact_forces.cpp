@@ -51,6 +51,10 @@ FeatureHit trackFeature(const Model& m, Contact& c) {
   return followFeature(m, w, c.blockB, edge, FeatureKind::Edge);
 }
 
+double springEnergy(const JointMaterial& j, const Contact& c, double weight) {
+  return 0.5 * weight * (c.normalStress * c.normalStress / j.kn + c.shearStress * c.shearStress / j.ks);
+}
+
 }  // namespace
 
 ContactStepTotals computeContactForces(Model& m, double dt) {
@@ -76,12 +80,21 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     const double dus = dot(va - vb, tangent) * dt;
 
     const JointMaterial& j = m.jointMaterials[c.joint];
+    const double weightBefore = contactWeight(j, c);
+    const double fnBefore = weightBefore * c.normalStress, fsBefore = weightBefore * c.shearStress;
+    const double energyBefore = c.open ? 0.0 : springEnergy(j, c, weightBefore);
+    const double slip = updateJointStresses(j, c, dun, dus);
     // The length matters only while the contact carries stress.
-    const double work = updateJointStresses(j, c, dun, dus);
     if (!c.open) c.length = contactLength(m, c.corner, hit);
     const double weight = contactWeight(j, c);
-    c.slipDissipation += weight * work;
     const double fn = weight * c.normalStress, fs = weight * c.shearStress;
+    c.slipDissipation += weightBefore * slip;
+    // Energy account of the contact over the step: the work of its forces on the displacement
+    // increments (trapezoidal) is what its springs stored, what slip dissipated, and the rest,
+    // which the joint released without work.
+    const double energy = c.open ? 0.0 : springEnergy(j, c, weight);
+    const double work = 0.5 * ((fnBefore + fn) * dun + (fsBefore + fs) * dus);
+    totals.jointRelease += work - (energy - energyBefore) - weightBefore * slip;
     c.normalDisplacement += dun;
     c.shearDisplacement += dus;
 
@@ -93,7 +106,7 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     bl.moment[b] -= cross(rb, f);
 
     if (!c.open) {
-      totals.strainEnergy += 0.5 * weight * (c.normalStress * c.normalStress / j.kn + c.shearStress * c.shearStress / j.ks);
+      totals.strainEnergy += energy;
       totals.sumForceMagnitude += std::sqrt(fn * fn + fs * fs);
       ++totals.closedContacts;
     }

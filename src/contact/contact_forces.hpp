@@ -8,6 +8,9 @@ namespace vdec {
 
 struct ContactStepTotals {
   double strainEnergy = 0.0;        // elastic energy stored in the contact springs
+  // Elastic energy the joints gave up without the blocks doing work for it: springs broken in
+  // tension, shear stress lost with cohesion (model 5), stress carried over a changed length.
+  double jointRelease = 0.0;
   double sumForceMagnitude = 0.0;   // over closed contacts, for the unbalanced-force ratio
   int closedContacts = 0;
 };

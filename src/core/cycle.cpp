@@ -55,6 +55,7 @@ void Cycle::buildStages() {
   stages_.push_back({"contact-forces", [this] {
                        const ContactStepTotals t = computeContactForces(model_, dt_);
                        strainEnergy_ = t.strainEnergy;
+                       energy_.jointRelease += t.jointRelease;
                        meanContactForce_ = t.closedContacts ? t.sumForceMagnitude / t.closedContacts : 0.0;
                      }});
   stages_.push_back({"rigid-block-motion", [this] {
@@ -68,6 +69,7 @@ void Cycle::buildStages() {
                        checkEnergy();
                        supplied_ += 0.5 * t.externalWork;
                        energy_.externalWork += t.externalWork;
+                       lastExternalWork_ = t.externalWork;
                        energy_.dampingDissipation += t.dampingDissipation;
                        model_.time += dt_;
                        ++model_.cycle;
@@ -120,10 +122,11 @@ void Cycle::recordHistories(bool initial) {
 
 bool Cycle::stopReached(std::string& reason) const {
   const StopCriteria& s = settings_.stop;
+  // The ratio first: a run that reaches it on the step its limit falls due did reach it.
+  if (s.ratio > 0 && model_.cycle > 0 && monitors_.unbalancedRatio <= s.ratio) { reason = "ratio"; return true; }
   if (s.cycles >= 0 && model_.cycle >= s.cycles) { reason = "cycles"; return true; }
   // Half a step of slack so that a time that is a multiple of dt is reached, not overshot.
   if (s.time >= 0 && model_.time >= s.time - 0.5 * dt_) { reason = "time"; return true; }
-  if (s.ratio > 0 && model_.cycle > 0 && monitors_.unbalancedRatio <= s.ratio) { reason = "ratio"; return true; }
   return false;
 }
 
@@ -177,6 +180,9 @@ RunReport Cycle::run() {
   energy_.slipDissipation = model_.deletedSlipDissipation;
   for (const Contact& c : model_.contacts) energy_.slipDissipation += c.slipDissipation;
   report.energy = energy_;
+  // Strain and kinetic energy are those of the positions the last step started from; the work of
+  // that step (done over the motion it produced) comes after them.
+  report.energy.externalWork -= lastExternalWork_;
   report.lastMonitors = monitors_;
   report.detectionScans = detection_.scans();
   report.wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();

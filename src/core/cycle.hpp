@@ -27,10 +27,12 @@ struct RunSettings {
 
 struct EnergyReport {
   double initial = 0.0;            // kinetic energy at the start
-  double externalWork = 0.0;       // by gravity, applied loads and driven blocks
+  double externalWork = 0.0;       // by gravity, applied loads and driven blocks, to the time of the
+                                   // last step's forces (the last step's work counts half)
   double kinetic = 0.0;            // at the end
   double strain = 0.0;             // at the end
   double slipDissipation = 0.0;    // by all contacts, existing and deleted
+  double jointRelease = 0.0;       // elastic energy joints gave up without work (breakage, length)
   double dampingDissipation = 0.0; // by mass damping
   double largestExcess = 0.0;      // max over the run of (kinetic + strain - supplied) / largest supplied
 };
@@ -92,6 +94,7 @@ class Cycle {
   double kineticEnergy_ = 0.0;
   double meanContactForce_ = 0.0;
   double largestUnbalanced_ = 0.0;
+  double lastExternalWork_ = 0.0;
   EnergyReport energy_;
   Monitors monitors_;
 };

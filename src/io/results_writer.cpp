@@ -71,6 +71,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                  {"kinetic", report.energy.kinetic},
                  {"strain", report.energy.strain},
                  {"slip_dissipation", report.energy.slipDissipation},
+                 {"joint_release", report.energy.jointRelease},
                  {"damping_dissipation", report.energy.dampingDissipation},
                  {"largest_excess", report.energy.largestExcess}};
   json histories = json::object();

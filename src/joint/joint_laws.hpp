@@ -14,8 +14,9 @@
 namespace vdec {
 
 // Updates c.elasticNormalStress, c.normalStress, c.shearStress and the state flags for the
-// displacement increments (dun, dus) of one step. Returns the plastic work of the step per
-// unit contact length (times L it is the energy dissipated by slip).
+// displacement increments (dun, dus) of one step. Returns the energy dissipated by slip in the
+// step per unit contact length (times L, J/m): the shear stress's plastic work less what the
+// dilation stores in the normal spring by opening against the normal stress.
 inline double updateJointStresses(const JointMaterial& j, Contact& c, double dun, double dus) {
   const bool fracture = j.law == JointLaw::CoulombFracture;
   const bool strengthAvailable = (!fracture || c.intact) && j.law != JointLaw::PointContact;
@@ -47,9 +48,10 @@ inline double updateJointStresses(const JointMaterial& j, Contact& c, double dun
   c.shearStress = trial > 0.0 ? strength : -strength;
   // Dilation (1.4-136): the joint tries to open as it slips; against a held normal
   // displacement that shows as added compression.
+  const double normalBefore = c.normalStress;
   c.elasticNormalStress += j.kn * slip * j.tanDilation;
   if (fracture) c.intact = false;
-  return strength * slip;
+  return (strength - normalBefore * j.tanDilation) * slip;
 }
 
 }  // namespace vdec

@@ -42,7 +42,8 @@ TEST(JointLaws, ShearForceIsCappedAtCohesionPlusFrictionAndDilationAddsCompressi
   EXPECT_NEAR(c.shearStress, strength, 1e-9 * strength);
   const double slip = (1e9 * 1e-3 - strength) / 1e9;
   EXPECT_NEAR(c.elasticNormalStress, sn + 2e9 * slip * j.tanDilation, 1e-6);
-  EXPECT_NEAR(work, strength * slip, 1e-9 * strength * slip);
+  // Dissipated: the plastic shear work less what dilation stores by opening against sn.
+  EXPECT_NEAR(work, (strength - sn * j.tanDilation) * slip, 1e-9 * strength * slip);
   // Reversal: elastic unloading first.
   updateJointStresses(j, c, 0.0, -1e-6);
   EXPECT_FALSE(c.slipping);
