@@ -47,6 +47,13 @@ bool segmentsCross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
          d4 != 0;
 }
 
+std::string numberText(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
 std::string pointText(Vec2 v) {
   std::ostringstream s;
   s.precision(10);
@@ -85,8 +92,8 @@ void validateBlockPolygon(const Polygon& p, double d, const std::string& what) {
     const double edge = norm(next - here);
     if (edge <= 2.0 * d)
       throw GeometryError(what + ": edge " + std::to_string(i) + " from " + pointText(here) +
-                          " has length " + std::to_string(edge) +
-                          ", not more than twice the rounding length d = " + std::to_string(d) +
+                          " has length " + numberText(edge) +
+                          ", not more than twice the rounding length d = " + numberText(d) +
                           "; reduce model.rounding or remove the short edge");
   }
 }

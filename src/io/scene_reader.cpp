@@ -21,6 +21,13 @@ namespace {
 
 double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 
+// A value as the user would write it: 1e-09, not 0.000000.
+std::string shown(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
 // Reads one TOML table, remembering which keys were used so that unknown ones are errors.
 class TableReader {
  public:
@@ -64,17 +71,17 @@ class TableReader {
   double number(std::string_view key, double fallback) { return has(key) ? number(key) : fallback; }
   double positive(std::string_view key) {
     const double v = number(key);
-    if (!(v > 0)) fail(key, "must be > 0, got " + std::to_string(v));
+    if (!(v > 0)) fail(key, "must be > 0, got " + shown(v));
     return v;
   }
   double nonNegative(std::string_view key, double fallback) {
     const double v = number(key, fallback);
-    if (v < 0) fail(key, "must be >= 0, got " + std::to_string(v));
+    if (v < 0) fail(key, "must be >= 0, got " + shown(v));
     return v;
   }
   double angleDegrees(std::string_view key, double fallback) {
     const double v = number(key, fallback);
-    if (v < 0 || v >= 90) fail(key, "must be in [0, 90) degrees, got " + std::to_string(v));
+    if (v < 0 || v >= 90) fail(key, "must be in [0, 90) degrees, got " + shown(v));
     return v;
   }
   long long integer(std::string_view key) {
@@ -152,9 +159,7 @@ class TableReader {
   void finish() const {
     for (auto&& [key, value] : table_)
       if (!used_.count(std::string(key.str()))) {
-        std::ostringstream s;
-        s << file_ << ":" << value.source().begin.line << ": key '" << qualified(key.str()) << "': unknown key";
-        throw SceneError(s.str());
+        throw SceneError(where(value.source()) + ": key '" + qualified(key.str()) + "': unknown key");
       }
   }
   const toml::table& table() const { return table_; }
@@ -186,11 +191,10 @@ void applyOverride(toml::table& root, const std::string& text) {
     // "name[i]" selects the i-th table of an array of tables, e.g. joint_material[0].cohesion.
     long index = -1;
     if (const auto open = part.find('['); open != std::string::npos && part.back() == ']') {
-      try {
-        index = std::stol(part.substr(open + 1, part.size() - open - 2));
-      } catch (const std::exception&) {
-        throw SceneError("--set '" + text + "': bad index in '" + part + "'");
-      }
+      const std::string digits = part.substr(open + 1, part.size() - open - 2);
+      if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9)
+        throw SceneError("--set '" + text + "': bad index in '" + part + "': a table number from 0");
+      index = std::stol(digits);
       part = part.substr(0, open);
     }
     if (part.empty()) throw SceneError("--set '" + text + "': empty key in '" + path + "'");
@@ -251,6 +255,7 @@ void addBlock(Model& m, const BlockInput& in) {
   b.moment.push_back(0.0);
   b.appliedForce.push_back(in.force);
   b.appliedMoment.push_back(in.moment);
+  b.deformable.push_back(0);
   const int block = b.size() - 1;
   for (const Vec2& p : in.polygon) {
     m.vertices.block.push_back(block);
@@ -350,7 +355,7 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
   if (auto t = top.subtable("solver")) {
     scene.settings.frac = t->number("frac", 0.1);
     if (!(scene.settings.frac > 0 && scene.settings.frac <= 10))
-      t->fail("frac", "must be in (0, 10], got " + std::to_string(scene.settings.frac));
+      t->fail("frac", "must be in (0, 10], got " + shown(scene.settings.frac));
     scene.settings.massDamping = t->nonNegative("mass_damping", 0.0);
     t->finish();
   }

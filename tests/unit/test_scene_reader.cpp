@@ -159,6 +159,18 @@ TEST(SceneReader, OverrideErrorsNameTheOverride) {
     EXPECT_NE(what.find("--set 'solver.frac=-0.5'"), std::string::npos) << what;
     EXPECT_NE(what.find("key 'solver.frac'"), std::string::npos) << what;
   }
+  auto message = [&](const std::string& override) {
+    try {
+      readScene(path, {override});
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message("solver.frob=1").find("--set 'solver.frob=1': key 'solver.frob': unknown key"), std::string::npos);
+  EXPECT_NE(message("block[-1].name=\"x\"").find("bad index"), std::string::npos);
+  // Small values are shown as written, not rounded to zero.
+  EXPECT_NE(message("model.rounding=-1e-9").find("got -1e-09"), std::string::npos) << message("model.rounding=-1e-9");
 }
 
 TEST(SceneReader, RunLimitsAndJointAssignmentsAreChecked) {
