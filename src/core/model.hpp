@@ -1,6 +1,7 @@
 #pragma once
 // The state of a vdec model: plain arrays indexed by small integer ids. Everything a stage
 // reads or writes lives here; stages own no state of their own beyond scratch buffers.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -12,6 +13,11 @@ namespace vdec {
 struct BlockMaterial {
   std::string name;
   double density = 0.0;  // kg/m^3 (unit thickness: mass per metre out of plane)
+  // Isotropic elasticity of the intact rock, needed by deformable blocks (1.4.6.7); zero for a
+  // material only rigid blocks use.
+  double bulk = 0.0;     // K, Pa
+  double shear = 0.0;    // G, Pa
+  bool elastic() const { return bulk > 0.0 && shear > 0.0; }
 };
 
 // NUREG/CR-5429 1.4.7: model #1 (point contact, forces), #2 (Coulomb slip), #5 (Coulomb slip
@@ -53,9 +59,54 @@ struct Blocks {
   std::vector<double> moment;
   std::vector<Vec2> appliedForce;     // constant user loads
   std::vector<double> appliedMoment;
+  // A deformable block moves through its gridpoints and zones; the rigid-body fields above
+  // then describe its input polygon only, and rigid motion leaves it alone.
+  std::vector<std::uint8_t> deformable;
 
   int size() const { return static_cast<int>(name.size()); }
-  bool movesFreely(int b) const { return driven[b] != DriveAll; }
+  bool movesFreely(int b) const { return driven[b] != DriveAll && !deformable[b]; }
+};
+
+// Gridpoints of deformable blocks (1.3.3.3): the nodes of their constant-strain triangles.
+struct Gridpoints {
+  std::vector<int> block;
+  std::vector<Vec2> initialPosition;
+  std::vector<Vec2> position;
+  std::vector<Vec2> velocity;        // at t - dt/2 before the motion stage, t + dt/2 after
+  std::vector<Vec2> appliedForce;    // boundary tractions of the current step
+  std::vector<double> mass;          // inertial mass (density-scaled when asked, 1.3-32)
+  std::vector<double> gravityMass;   // rho A / 3 from each zone around it
+  std::vector<double> stiffness;     // k_i of 1.3-26 and 1.3-27 from the zones around it
+  std::vector<std::uint8_t> driven;  // DriveX / DriveY: velocity prescribed (zero when fixed)
+
+  int size() const { return static_cast<int>(block.size()); }
+};
+
+// Constant-strain triangles (zones) of deformable blocks, counter-clockwise gridpoint ids.
+// Stresses are tension positive; szz is tracked for plane strain.
+struct Zones {
+  std::vector<std::array<int, 3>> gridpoint;
+  std::vector<int> block;
+  std::vector<int> material;
+  std::vector<double> sxx, syy, sxy, szz;
+  // The forces the zone puts on its three gridpoints this step, gathered per gridpoint in a
+  // fixed order so that the result does not depend on how the zone loop is split over threads.
+  std::vector<std::array<Vec2, 3>> nodalForce;
+
+  int size() const { return static_cast<int>(gridpoint.size()); }
+};
+
+// For each gridpoint, the (zone, corner) slots that hold its share of zone forces.
+struct GridpointZones {
+  std::vector<int> start;  // size gridpoints + 1
+  std::vector<int> slot;   // 3 * zone + corner
+};
+
+// A boundary edge of a deformable block carrying a traction: the stress tensor given at the
+// edge (pressure is sxx = syy = -p, sxy = 0) times the current outward normal and length.
+struct LoadedEdge {
+  int from = -1, to = -1;  // gridpoints, counter-clockwise along the block boundary
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
 };
 
 // Boundary vertices of all blocks. For a rigid block they move with its rigid motion;
@@ -117,6 +168,10 @@ struct Model {
   std::vector<JointMaterial> jointMaterials;
   Blocks blocks;
   Vertices vertices;
+  Gridpoints gridpoints;
+  Zones zones;
+  GridpointZones gridpointZones;
+  std::vector<LoadedEdge> loadedEdges;
   std::vector<Contact> contacts;
   double deletedSlipDissipation = 0.0;  // J/m, by contacts that no longer exist
   // Joint material per unordered block pair where the scene assigns one; else defaultJoint.
