@@ -26,14 +26,16 @@ std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m
   maxX_.assign(n, -INFINITY);
   minY_.assign(n, INFINITY);
   maxY_.assign(n, -INFINITY);
-  for (int v = 0; v < m.vertices.size(); ++v) {
-    const int b = m.vertices.block[v];
-    const Vec2 p = m.vertices.position[v];
+  auto extend = [&](int b, Vec2 p) {
     minX_[b] = std::min(minX_[b], p.x - inflate);
     maxX_[b] = std::max(maxX_[b], p.x + inflate);
     minY_[b] = std::min(minY_[b], p.y - inflate);
     maxY_[b] = std::max(maxY_[b], p.y + inflate);
-  }
+  };
+  for (int v = 0; v < m.vertices.size(); ++v) extend(m.vertices.block[v], m.vertices.position[v]);
+  // Deformable blocks have no contact vertices yet; their gridpoints give their boxes, so that
+  // one coming near another block is caught rather than passing through it unseen.
+  for (int i = 0; i < m.gridpoints.size(); ++i) extend(m.gridpoints.block[i], m.gridpoints.position[i]);
   if (static_cast<int>(order_.size()) != n) {
     order_.resize(n);
     for (int i = 0; i < n; ++i) order_[i] = i;
@@ -95,6 +97,13 @@ void ContactDetection::scan(Model& m) {
   // neighbours produces candidates already in key order (corner, block B).
   const auto pairs = candidatePairs(m);
   const int n = m.blocks.size();
+  for (const auto& [a, b] : pairs) {
+    if (!m.blocks.deformable[a] && !m.blocks.deformable[b]) continue;
+    throw GeometryError("block '" + m.blocks.name[m.blocks.deformable[a] ? a : b] + "' is deformable and within the "
+                        "contact tolerance of block '" + m.blocks.name[m.blocks.deformable[a] ? b : a] +
+                        "' (at cycle " + std::to_string(m.cycle) + "): contacts on deformable blocks are not "
+                        "implemented yet; keep deformable blocks apart from other blocks, or make them rigid");
+  }
   std::vector<int> neighbourStart(n + 1, 0), neighbours(2 * pairs.size());
   for (const auto& [a, b] : pairs) {
     ++neighbourStart[a + 1];

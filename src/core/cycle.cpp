@@ -9,7 +9,9 @@
 
 #include "contact/contact_forces.hpp"
 #include "core/errors.hpp"
+#include "motion/gridpoint_motion.hpp"
 #include "motion/rigid_motion.hpp"
+#include "zone/cst.hpp"
 
 namespace vdec {
 
@@ -22,16 +24,43 @@ using Clock = std::chrono::steady_clock;
 // either grows without bound or, on a frictional contact, is clipped by slip into a chatter that
 // holds two to three times the energy supplied. The alarm at 1.5 lies between the two.
 constexpr double kEnergyExcessLimit = 1.5;
+// Adaptive damping: alpha moves by this factor every other step towards R = 0.5, between
+// 1e-4 / dt (little damping) and 1 / dt (alpha dt / 2 = 0.5, far past critical for every mode
+// the step resolves).
+constexpr double kAdaptiveTarget = 0.5;
+constexpr double kAdaptiveGain = 1.05;
+constexpr double kAdaptiveStart = 1e-4;
+constexpr double kAdaptiveMax = 1.0;
 }  // namespace
 
 Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histories)
     : model_(model), settings_(settings), historySpecs_(std::move(histories)) {
   histories_.resize(historySpecs_.size());
-  detection_.initialise(model_);
-  dt_ = rigidBlockTimeStep(model_, settings_.frac);
+  const Blocks& bl = model_.blocks;
+  hasZones_ = model_.zones.size() > 0;
+  for (int b = 0; b < bl.size(); ++b) hasRigidBlocks_ = hasRigidBlocks_ || !bl.deformable[b];
+  hasContacts_ = bl.size() > 1;
+  if (hasContacts_) detection_.initialise(model_);
+  // 1.3-30: the smaller of the rigid-block step (blocks that move, through their joints) and
+  // the zone step (1.3-25).
+  bool anyFreeRigid = false;
+  for (int b = 0; b < bl.size(); ++b) anyFreeRigid = anyFreeRigid || bl.movesFreely(b);
+  const double dtBlocks = anyFreeRigid || !hasZones_ ? rigidBlockTimeStep(model_, settings_.frac) : INFINITY;
+  if (hasZones_) {
+    prepareZones(model_);
+    if (settings_.densityScaling) {
+      // 1.3-32 to 1.3-34: inertial masses chosen so that every gridpoint is at the same stable
+      // step, the unit step where blocks do not need a smaller one; weights stay exact.
+      const double step = std::isfinite(dtBlocks) ? dtBlocks : 1.0;
+      for (int i = 0; i < model_.gridpoints.size(); ++i)
+        model_.gridpoints.mass[i] = 0.25 * model_.gridpoints.stiffness[i] * step * step;
+    }
+  }
+  dt_ = std::min(dtBlocks, hasZones_ ? zoneTimeStep(model_) : INFINITY);
+  alpha_ = settings_.adaptiveDamping ? kAdaptiveStart / dt_ : settings_.massDamping;
+
   double scale = 0.0;
-  for (int b = 0; b < model_.blocks.size(); ++b) {
-    const Blocks& bl = model_.blocks;
+  for (int b = 0; b < bl.size(); ++b) {
     if (!bl.movesFreely(b)) continue;
     // Driven components are not counted: the kinetic energy the monitor measures is that of
     // the free ones, and a driver's work enters as external work.
@@ -41,40 +70,120 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     energy_.initial += 0.5 * (bl.mass[b] * (vx * vx + vy * vy) + bl.inertia[b] * w * w);
     scale += (bl.mass[b] * norm(model_.gravity) + norm(bl.appliedForce[b])) * model_.roundingLength;
   }
+  const Gridpoints& g = model_.gridpoints;
+  for (int i = 0; i < g.size(); ++i) {
+    const double vx = (g.driven[i] & DriveX) ? 0.0 : g.velocity[i].x, vy = (g.driven[i] & DriveY) ? 0.0 : g.velocity[i].y;
+    energy_.initial += 0.5 * g.mass[i] * (vx * vx + vy * vy);
+  }
+  // Stress present at the start (in situ) is energy the model was given.
+  const Zones& zn = model_.zones;
+  for (int z = 0; z < zn.size(); ++z) {
+    const BlockMaterial& mat = model_.blockMaterials[zn.material[z]];
+    const auto& n = zn.gridpoint[z];
+    const double area = 0.5 * cross(g.position[n[1]] - g.position[n[0]], g.position[n[2]] - g.position[n[0]]);
+    energy_.initial += area * elasticEnergyDensity(zn.sxx[z], zn.syy[z], zn.sxy[z], zn.szz[z], mat.bulk, mat.shear);
+  }
+  if (hasZones_) {
+    // The energy a load does over the elastic displacement it causes: load^2 / stiffness.
+    double gridScale = 0.0;
+    for (int i = 0; i < g.size(); ++i) {
+      const double load = g.gravityMass[i] * norm(model_.gravity);
+      gridScale += load * load / std::max(g.stiffness[i], 1e-300);
+    }
+    for (const LoadedEdge& e : model_.loadedEdges) {
+      const double length = norm(g.position[e.to] - g.position[e.from]);
+      const double load = std::max({std::abs(e.sxx), std::abs(e.syy), std::abs(e.sxy)}) * length;
+      gridScale += load * load / std::max(g.stiffness[e.from], 1e-300);
+    }
+    scale += gridScale;
+  }
   supplied_ = energy_.initial;
   energyFloor_ = 1e-9 * std::max(scale + energy_.initial, 1e-200);
   buildStages();
 }
 
 void Cycle::buildStages() {
-  // The rigid-block scene: contacts, then motion. Later component models add their stages here,
-  // only when the scene has them.
-  stages_.push_back({"contact-detection", [this] {
-                       if (model_.cycle > 0) detection_.update(model_, largestStepDisplacement_);
-                     }});
-  stages_.push_back({"contact-forces", [this] {
-                       const ContactStepTotals t = computeContactForces(model_, dt_);
-                       strainEnergy_ = t.strainEnergy;
-                       energy_.jointRelease += t.jointRelease;
-                       meanContactForce_ = t.closedContacts ? t.sumForceMagnitude / t.closedContacts : 0.0;
-                     }});
-  stages_.push_back({"rigid-block-motion", [this] {
-                       const MotionStepTotals t = integrateRigidBlocks(model_, dt_, settings_.massDamping);
-                       kineticEnergy_ = t.kineticEnergy;
-                       largestUnbalanced_ = t.largestUnbalancedForce;
-                       largestStepDisplacement_ = t.largestDisplacement;
-                       // Centred in time like the kinetic energy: half of this step's work
-                       // belongs before the check, half after.
-                       supplied_ += 0.5 * t.externalWork;
-                       checkEnergy();
-                       supplied_ += 0.5 * t.externalWork;
-                       energy_.externalWork += t.externalWork;
-                       lastExternalWork_ = t.externalWork;
-                       energy_.dampingDissipation += t.dampingDissipation;
-                       model_.time += dt_;
-                       ++model_.cycle;
-                     }});
+  // Only the stages the scene needs: a single deformable block has no contacts, a scene of
+  // rigid blocks no zones.
+  if (hasContacts_) {
+    stages_.push_back({"contact-detection", [this] {
+                         if (model_.cycle > 0) detection_.update(model_, largestStepDisplacement_);
+                       }});
+    stages_.push_back({"contact-forces", [this] {
+                         const ContactStepTotals t = computeContactForces(model_, dt_);
+                         step_.strainEnergy += t.strainEnergy;
+                         energy_.jointRelease += t.jointRelease;
+                         step_.sumForceMagnitude += t.sumForceMagnitude;
+                         step_.forceCount += t.closedContacts;
+                       }});
+  }
+  if (hasZones_) {
+    stages_.push_back({"zone-forces", [this] { step_.strainEnergy += computeZoneForces(model_, dt_).strainEnergy; }});
+    if (!model_.loadedEdges.empty()) stages_.push_back({"boundary-tractions", [this] { applyEdgeTractions(model_); }});
+  }
+  if (hasRigidBlocks_) {
+    stages_.push_back({"rigid-block-motion", [this] {
+                         const MotionStepTotals t = integrateRigidBlocks(model_, dt_, alpha_);
+                         step_.kineticEnergy += t.kineticEnergy;
+                         step_.largestUnbalanced = std::max(step_.largestUnbalanced, t.largestUnbalancedForce);
+                         step_.largestDisplacement = std::max(step_.largestDisplacement, t.largestDisplacement);
+                         step_.externalWork += t.externalWork;
+                         step_.dampingDissipation += t.dampingDissipation;
+                         step_.dampingPower += t.dampingPower;
+                         step_.kineticRate += t.kineticRate;
+                       }});
+  }
+  if (hasZones_) {
+    stages_.push_back({"gridpoint-motion", [this] {
+                         const GridpointStepTotals t = integrateGridpoints(model_, dt_, alpha_);
+                         step_.kineticEnergy += t.kineticEnergy;
+                         step_.largestUnbalanced = std::max(step_.largestUnbalanced, t.largestUnbalancedForce);
+                         step_.largestDisplacement = std::max(step_.largestDisplacement, t.largestDisplacement);
+                         step_.externalWork += t.externalWork;
+                         step_.dampingDissipation += t.dampingDissipation;
+                         step_.sumForceMagnitude += t.sumForceMagnitude;
+                         step_.forceCount += t.freeGridpoints;
+                         step_.dampingPower += t.dampingPower;
+                         step_.kineticRate += t.kineticRate;
+                       }});
+  }
+  stages_.push_back({"end-of-step", [this] { finishStep(); }});
   if (!historySpecs_.empty()) stages_.push_back({"histories", [this] { recordHistories(false); }});
+}
+
+void Cycle::finishStep() {
+  const StepTotals t = step_;
+  step_ = {};
+  kineticEnergy_ = t.kineticEnergy;
+  strainEnergy_ = t.strainEnergy;
+  largestUnbalanced_ = t.largestUnbalanced;
+  largestStepDisplacement_ = t.largestDisplacement;
+  meanContactForce_ = t.forceCount ? t.sumForceMagnitude / t.forceCount : 0.0;
+  // Centred in time like the kinetic energy: half of this step's work belongs before the check,
+  // half after.
+  supplied_ += 0.5 * t.externalWork;
+  checkEnergy();
+  supplied_ += 0.5 * t.externalWork;
+  energy_.externalWork += t.externalWork;
+  lastExternalWork_ = t.externalWork;
+  energy_.dampingDissipation += t.dampingDissipation;
+  if (settings_.adaptiveDamping) adaptDamping(t);
+  model_.time += dt_;
+  ++model_.cycle;
+}
+
+void Cycle::adaptDamping(const StepTotals& t) {
+  // 1.3-23 (Cundall 1982): R = power absorbed by mass damping / rate of change of kinetic
+  // energy, held near 0.5 by a servo on alpha, which then damps close to critically. R is
+  // formed every other step from the two steps' sums, as in the reference.
+  servoPower_ += alpha_ * t.dampingPower;
+  servoRate_ += t.kineticRate;
+  if (model_.cycle % 2 == 0) return;
+  const double rate = std::abs(servoRate_);
+  const double ratio = rate > 0.0 ? servoPower_ / rate : (servoPower_ > 0.0 ? INFINITY : 0.0);
+  alpha_ *= ratio < kAdaptiveTarget ? kAdaptiveGain : 1.0 / kAdaptiveGain;
+  alpha_ = std::clamp(alpha_, kAdaptiveStart / dt_, kAdaptiveMax / dt_);
+  servoPower_ = servoRate_ = 0.0;
 }
 
 void Cycle::checkEnergy() {
@@ -113,7 +222,10 @@ void Cycle::recordHistories(bool initial) {
   for (std::size_t i = 0; i < historySpecs_.size(); ++i) {
     const HistorySpec& h = historySpecs_[i];
     if (model_.cycle % h.every != 0) continue;
-    const bool block = findHistorySubject(h.quantity) == HistorySubject::Block;
+    const HistorySubject subject = findHistorySubject(h.quantity);
+    // Positions are those just reached; zone stresses, joints and model measures were formed in
+    // this step from the positions at its start.
+    const bool block = subject == HistorySubject::Block || subject == HistorySubject::Gridpoint;
     if (initial && !block) continue;
     histories_[i].t.push_back(block || initial ? model_.time : model_.time - dt_);
     histories_[i].value.push_back(sampleHistory(model_, h, monitors_));

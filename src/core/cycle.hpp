@@ -20,6 +20,8 @@ struct StopCriteria {
 struct RunSettings {
   double frac = 0.1;          // FRAC of 1.3-28
   double massDamping = 0.0;   // alpha of 1.3-21, 1/s
+  bool adaptiveDamping = false;  // alpha by the servo of 1.3-23 instead
+  bool densityScaling = false;   // gridpoint inertial masses scaled to one step (1.3-32 to 1.3-34)
   StopCriteria stop;
   bool profile = false;
   bool progress = false;
@@ -66,6 +68,7 @@ class Cycle {
   // report.error and report.errorCode set, so that the histories up to it can still be written.
   RunReport run();
   double timeStep() const { return dt_; }
+  double massDamping() const { return alpha_; }
 
  private:
   struct Stage {
@@ -73,7 +76,16 @@ class Cycle {
     std::function<void()> step;
     double seconds = 0.0;
   };
+  // Sums the stages of one step contribute to, closed by finishStep.
+  struct StepTotals {
+    double kineticEnergy = 0.0, strainEnergy = 0.0, externalWork = 0.0, dampingDissipation = 0.0;
+    double largestUnbalanced = 0.0, largestDisplacement = 0.0, sumForceMagnitude = 0.0;
+    int forceCount = 0;
+    double dampingPower = 0.0, kineticRate = 0.0;
+  };
   void buildStages();
+  void finishStep();
+  void adaptDamping(const StepTotals& totals);
   void checkEnergy();
   void recordHistories(bool initial);
   bool stopReached(std::string& reason) const;
@@ -95,6 +107,10 @@ class Cycle {
   double meanContactForce_ = 0.0;
   double largestUnbalanced_ = 0.0;
   double lastExternalWork_ = 0.0;
+  StepTotals step_;
+  bool hasZones_ = false, hasRigidBlocks_ = false, hasContacts_ = false;
+  double alpha_ = 0.0;                       // mass damping in use, 1/s
+  double servoPower_ = 0.0, servoRate_ = 0.0;
   EnergyReport energy_;
   Monitors monitors_;
 };

@@ -27,6 +27,14 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::KineticEnergy, "model.kinetic_energy", S::Model, "J/m", "kinetic energy (time-centred)"},
       {Q::StrainEnergy, "model.strain_energy", S::Model, "J/m", "elastic energy in the contacts"},
       {Q::EnergyRatio, "model.energy_ratio", S::Model, "-", "(kinetic + strain energy) / largest energy supplied so far"},
+      {Q::GridpointDisplacementX, "gridpoint.displacement_x", S::Gridpoint, "m", "x displacement of a deformable block's gridpoint"},
+      {Q::GridpointDisplacementY, "gridpoint.displacement_y", S::Gridpoint, "m", "y displacement of a deformable block's gridpoint"},
+      {Q::GridpointVelocityX, "gridpoint.velocity_x", S::Gridpoint, "m/s", "x velocity of the gridpoint (at the half step)"},
+      {Q::GridpointVelocityY, "gridpoint.velocity_y", S::Gridpoint, "m/s", "y velocity of the gridpoint (at the half step)"},
+      {Q::ZoneSxx, "zone.sxx", S::Zone, "Pa", "zone stress sxx, tension positive"},
+      {Q::ZoneSyy, "zone.syy", S::Zone, "Pa", "zone stress syy, tension positive"},
+      {Q::ZoneSxy, "zone.sxy", S::Zone, "Pa", "zone stress sxy"},
+      {Q::ZoneSzz, "zone.szz", S::Zone, "Pa", "zone stress szz (plane strain), tension positive"},
   };
   return table;
 }
@@ -89,6 +97,16 @@ double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) 
     case HistoryQuantity::KineticEnergy: return mon.kineticEnergy;
     case HistoryQuantity::StrainEnergy: return mon.strainEnergy;
     case HistoryQuantity::EnergyRatio: return mon.energyRatio;
+    case HistoryQuantity::GridpointDisplacementX:
+      return m.gridpoints.position[h.gridpoint].x - m.gridpoints.initialPosition[h.gridpoint].x;
+    case HistoryQuantity::GridpointDisplacementY:
+      return m.gridpoints.position[h.gridpoint].y - m.gridpoints.initialPosition[h.gridpoint].y;
+    case HistoryQuantity::GridpointVelocityX: return m.gridpoints.velocity[h.gridpoint].x;
+    case HistoryQuantity::GridpointVelocityY: return m.gridpoints.velocity[h.gridpoint].y;
+    case HistoryQuantity::ZoneSxx: return m.zones.sxx[h.zone];
+    case HistoryQuantity::ZoneSyy: return m.zones.syy[h.zone];
+    case HistoryQuantity::ZoneSxy: return m.zones.sxy[h.zone];
+    case HistoryQuantity::ZoneSzz: return m.zones.szz[h.zone];
     default: return jointMeasure(m, h);
   }
 }

@@ -16,9 +16,11 @@ enum class HistoryQuantity {
   JointNormalForce, JointShearForce, JointNormalStress, JointShearStress,
   JointNormalDisplacement, JointShearDisplacement, JointLength, JointContacts,
   UnbalancedRatio, LargestUnbalancedForce, KineticEnergy, StrainEnergy, EnergyRatio,
+  GridpointDisplacementX, GridpointDisplacementY, GridpointVelocityX, GridpointVelocityY,
+  ZoneSxx, ZoneSyy, ZoneSxy, ZoneSzz,
 };
 
-enum class HistorySubject { Block, Joint, Model };
+enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone };
 
 struct HistoryQuantityInfo {
   HistoryQuantity quantity;
@@ -37,6 +39,8 @@ struct HistorySpec {
   HistoryQuantity quantity = HistoryQuantity::BlockX;
   int block = -1;       // Block subject, or the first block of a joint
   int otherBlock = -1;  // Joint subject
+  int gridpoint = -1;   // Gridpoint subject
+  int zone = -1;        // Zone subject
   int every = 1;
 };
 

@@ -172,6 +172,8 @@ struct Model {
   Zones zones;
   GridpointZones gridpointZones;
   std::vector<LoadedEdge> loadedEdges;
+  // Each deformable block's outline: its boundary gridpoints, counter-clockwise.
+  std::vector<std::pair<int, std::vector<int>>> blockBoundaries;
   std::vector<Contact> contacts;
   double deletedSlipDissipation = 0.0;  // J/m, by contacts that no longer exist
   // Joint material per unordered block pair where the scene assigns one; else defaultJoint.

@@ -6,9 +6,11 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "contact/contact_geometry.hpp"
+#include "geometry/zoning.hpp"
 #include "core/errors.hpp"
 #include "io/build_info.hpp"
 
@@ -36,6 +38,53 @@ nlohmann::json environment() {
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%SZ", &utc);
   return {{"host", host}, {"written_utc", stamp}};
+}
+
+// Deformable blocks: per gridpoint its initial position and displacement, per zone its centroid
+// and stress, per block its zoning quality; columns of equal length, in id order.
+void writeContinuum(nlohmann::json& j, const Model& m) {
+  const Gridpoints& g = m.gridpoints;
+  std::vector<double> x0, y0, ux, uy, vx, vy;
+  std::vector<int> gBlock;
+  for (int i = 0; i < g.size(); ++i) {
+    gBlock.push_back(g.block[i]);
+    x0.push_back(g.initialPosition[i].x);
+    y0.push_back(g.initialPosition[i].y);
+    ux.push_back(g.position[i].x - g.initialPosition[i].x);
+    uy.push_back(g.position[i].y - g.initialPosition[i].y);
+    vx.push_back(g.velocity[i].x);
+    vy.push_back(g.velocity[i].y);
+  }
+  j["gridpoints"] = {{"block", gBlock}, {"x0", x0}, {"y0", y0}, {"displacement_x", ux}, {"displacement_y", uy},
+                     {"velocity_x", vx}, {"velocity_y", vy}};
+  const Zones& zn = m.zones;
+  std::vector<double> cx0, cy0, area;
+  std::vector<int> zBlock;
+  std::map<int, Mesh> meshes;  // per block, for the quality figures
+  for (int z = 0; z < zn.size(); ++z) {
+    const auto& n = zn.gridpoint[z];
+    const Vec2 p0 = g.initialPosition[n[0]], p1 = g.initialPosition[n[1]], p2 = g.initialPosition[n[2]];
+    const Vec2 c = (1.0 / 3.0) * (p0 + p1 + p2);
+    zBlock.push_back(zn.block[z]);
+    cx0.push_back(c.x);
+    cy0.push_back(c.y);
+    const Vec2 q0 = g.position[n[0]], q1 = g.position[n[1]], q2 = g.position[n[2]];
+    area.push_back(0.5 * cross(q1 - q0, q2 - q0));
+    Mesh& mesh = meshes[zn.block[z]];
+    const int base = static_cast<int>(mesh.nodes.size());
+    mesh.nodes.insert(mesh.nodes.end(), {p0, p1, p2});
+    mesh.triangles.push_back({base, base + 1, base + 2});
+  }
+  j["zones"] = {{"block", zBlock}, {"x0", cx0}, {"y0", cy0}, {"area", area}, {"sxx", zn.sxx},
+                {"syy", zn.syy}, {"sxy", zn.sxy}, {"szz", zn.szz}};
+  nlohmann::json quality = nlohmann::json::object();
+  for (const auto& [block, mesh] : meshes) {
+    const MeshQuality q = meshQuality(mesh);
+    quality[m.blocks.name[block]] = {{"zones", mesh.triangles.size()},
+                                     {"min_angle_degrees", q.minAngleDegrees},
+                                     {"max_aspect_ratio", q.maxAspectRatio}};
+  }
+  j["zoning"] = quality;
 }
 
 }  // namespace
@@ -113,6 +162,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                         {"intact", c.intact}});
   }
   j["contacts"] = contacts;
+  if (m.zones.size() > 0) writeContinuum(j, m);
 
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

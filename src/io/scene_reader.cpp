@@ -14,163 +14,12 @@
 #include "geometry/block_cutting.hpp"
 #include "geometry/polygon.hpp"
 #include "io/sha256.hpp"
+#include "io/deformable_reader.hpp"
+#include "io/table_reader.hpp"
 
 namespace vdec {
 
 namespace {
-
-double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
-
-// A value as the user would write it: 1e-09, not 0.000000.
-std::string shown(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-// Reads one TOML table, remembering which keys were used so that unknown ones are errors.
-class TableReader {
- public:
-  TableReader(const toml::table& table, std::string prefix, const std::string& file)
-      : table_(table), prefix_(std::move(prefix)), file_(file) {}
-
-  [[noreturn]] void fail(std::string_view key, const std::string& message) const {
-    const toml::node* node = table_.get(key);
-    throw SceneError(where(node ? node->source() : table_.source()) + ": key '" + qualified(key) + "': " + message);
-  }
-  // An error about the table as a whole, e.g. a choice among keys none of which is there.
-  [[noreturn]] void failTable(const std::string& message) const {
-    throw SceneError(where(table_.source()) + ": [" + prefix_ + "]: " + message);
-  }
-  // file:line, or the --set override a value came from (its source path is the override text).
-  std::string where(const toml::source_region& source) const {
-    if (source.path && *source.path != file_) return file_ + ": " + *source.path;
-    if (source.begin.line == 0) return file_ + ": a table made by --set";
-    return file_ + ":" + std::to_string(source.begin.line);
-  }
-  std::string qualified(std::string_view key) const {
-    return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
-  }
-  bool has(std::string_view key) {
-    used_.insert(std::string(key));
-    return table_.get(key) != nullptr;
-  }
-  const toml::node* node(std::string_view key) {
-    used_.insert(std::string(key));
-    return table_.get(key);
-  }
-
-  double number(std::string_view key) {
-    const toml::node* n = node(key);
-    if (!n) fail(key, "is required");
-    if (!n->is_number()) fail(key, "must be a number");
-    const double v = *n->value<double>();
-    if (!std::isfinite(v)) fail(key, "must be finite");
-    return v;
-  }
-  double number(std::string_view key, double fallback) { return has(key) ? number(key) : fallback; }
-  double positive(std::string_view key) {
-    const double v = number(key);
-    if (!(v > 0)) fail(key, "must be > 0, got " + shown(v));
-    return v;
-  }
-  double nonNegative(std::string_view key, double fallback) {
-    const double v = number(key, fallback);
-    if (v < 0) fail(key, "must be >= 0, got " + shown(v));
-    return v;
-  }
-  double angleDegrees(std::string_view key, double fallback) {
-    const double v = number(key, fallback);
-    if (v < 0 || v >= 90) fail(key, "must be in [0, 90) degrees, got " + shown(v));
-    return v;
-  }
-  long long integer(std::string_view key) {
-    const toml::node* n = node(key);
-    if (!n) fail(key, "is required");
-    if (!n->is_integer()) fail(key, "must be an integer");
-    return *n->value<long long>();
-  }
-  std::string string(std::string_view key) {
-    const toml::node* n = node(key);
-    if (!n) fail(key, "is required");
-    if (!n->is_string()) fail(key, "must be a string");
-    return *n->value<std::string>();
-  }
-  std::string string(std::string_view key, const std::string& fallback) { return has(key) ? string(key) : fallback; }
-  bool boolean(std::string_view key, bool fallback) {
-    const toml::node* n = node(key);
-    if (!n) return fallback;
-    if (!n->is_boolean()) fail(key, "must be true or false");
-    return *n->value<bool>();
-  }
-  Vec2 vec2(std::string_view key, Vec2 fallback) { return has(key) ? vec2(key) : fallback; }
-  Vec2 vec2(std::string_view key) {
-    const toml::node* n = node(key);
-    if (!n) fail(key, "is required");
-    const toml::array* a = n->as_array();
-    if (!a || a->size() != 2 || !(*a)[0].is_number() || !(*a)[1].is_number())
-      fail(key, "must be an array of two numbers, e.g. [0.0, 1.0]");
-    return {*(*a)[0].value<double>(), *(*a)[1].value<double>()};
-  }
-  Polygon polygon(std::string_view key) {
-    const toml::node* n = node(key);
-    if (!n) fail(key, "is required");
-    const toml::array* a = n->as_array();
-    if (!a) fail(key, "must be an array of [x, y] points");
-    Polygon p;
-    for (const toml::node& point : *a) {
-      const toml::array* xy = point.as_array();
-      if (!xy || xy->size() != 2 || !(*xy)[0].is_number() || !(*xy)[1].is_number())
-        fail(key, "must be an array of [x, y] points; point " + std::to_string(p.size()) + " is not");
-      p.push_back({*(*xy)[0].value<double>(), *(*xy)[1].value<double>()});
-    }
-    return p;
-  }
-  std::vector<std::string> strings(std::string_view key) {
-    const toml::node* n = node(key);
-    if (!n) fail(key, "is required");
-    const toml::array* a = n->as_array();
-    if (!a) fail(key, "must be an array of strings");
-    std::vector<std::string> out;
-    for (const toml::node& s : *a) {
-      if (!s.is_string()) fail(key, "must be an array of strings");
-      out.push_back(*s.value<std::string>());
-    }
-    return out;
-  }
-  // Array of tables, e.g. [[block]]; absent means empty.
-  std::vector<std::pair<const toml::table*, std::string>> tables(std::string_view key) {
-    std::vector<std::pair<const toml::table*, std::string>> out;
-    const toml::node* n = node(key);
-    if (!n) return out;
-    const toml::array* a = n->as_array();
-    if (!a || !a->is_array_of_tables()) fail(key, "must be an array of tables, written [[" + qualified(key) + "]]");
-    for (std::size_t i = 0; i < a->size(); ++i)
-      out.emplace_back((*a)[i].as_table(), qualified(key) + "[" + std::to_string(i) + "]");
-    return out;
-  }
-  std::optional<TableReader> subtable(std::string_view key) {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    if (!n->is_table()) fail(key, "must be a table, written [" + qualified(key) + "]");
-    return TableReader(*n->as_table(), qualified(key), file_);
-  }
-  // Unknown keys are errors: a misspelt key must never be silently ignored.
-  void finish() const {
-    for (auto&& [key, value] : table_)
-      if (!used_.count(std::string(key.str()))) {
-        throw SceneError(where(value.source()) + ": key '" + qualified(key.str()) + "': unknown key");
-      }
-  }
-  const toml::table& table() const { return table_; }
-  const std::string& file() const { return file_; }
-
- private:
-  const toml::table& table_;
-  std::string prefix_;
-  std::string file_;
-  std::set<std::string> used_;
-};
 
 void applyOverride(toml::table& root, const std::string& text) {
   const auto eq = text.find('=');
@@ -225,6 +74,7 @@ struct BlockInput {
   std::string name;
   int material = -1;
   Polygon polygon;
+  std::optional<Mesh> mesh;  // a deformable block's zoning
   std::uint8_t driven = 0;
   Vec2 velocity, force;
   double angularVelocity = 0.0, moment = 0.0;
@@ -303,6 +153,7 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     for (auto [table, prefix] : top.tables("block_material")) {
       TableReader r(*table, prefix, path);
       BlockMaterial mat{r.string("name"), r.positive("density")};
+      readElasticConstants(r, mat);
       for (const auto& other : m.blockMaterials)
         if (other.name == mat.name) r.fail("name", "block material '" + mat.name + "' is defined twice");
       m.blockMaterials.push_back(mat);
@@ -332,11 +183,10 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
       m.jointMaterials.push_back(j);
       r.finish();
     }
-    if (m.jointMaterials.empty()) top.fail("joint_material", "at least one [[joint_material]] is required");
     if (defaultJoint.empty()) {
       if (m.jointMaterials.size() > 1)
         t->fail("default_joint", "is required when more than one joint material is defined");
-      m.defaultJoint = 0;
+      m.defaultJoint = m.jointMaterials.empty() ? -1 : 0;
     } else {
       for (std::size_t i = 0; i < m.jointMaterials.size(); ++i)
         if (m.jointMaterials[i].name == defaultJoint) m.defaultJoint = static_cast<int>(i);
@@ -357,6 +207,10 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     if (!(scene.settings.frac > 0 && scene.settings.frac <= 10))
       t->fail("frac", "must be in (0, 10], got " + shown(scene.settings.frac));
     scene.settings.massDamping = t->nonNegative("mass_damping", 0.0);
+    scene.settings.adaptiveDamping = t->boolean("adaptive_damping", false);
+    if (scene.settings.adaptiveDamping && t->has("mass_damping"))
+      t->fail("mass_damping", "adaptive_damping sets the mass damping itself; give one or the other");
+    scene.settings.densityScaling = t->boolean("density_scaling", false);
     t->finish();
   }
   {
@@ -388,6 +242,19 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     in.name = r.string("name");
     claimName(r, in.name, prefix);
     in.material = materialIndex(r);
+    in.mesh = readZoning(r, [&] { return r.polygon("vertices"); });
+    if (in.mesh) {
+      if (!m.blockMaterials[in.material].elastic())
+        r.fail("material", "a deformable block needs an elastic material: give block material '" +
+                               m.blockMaterials[in.material].name + "' young and poisson (or bulk and shear)");
+      for (const char* key : {"fix", "velocity", "angular_velocity", "force", "moment"})
+        if (r.has(key))
+          r.fail(key, "a deformable block is loaded and held through [[boundary]] tables, not block keys");
+      in.where = path + ": block '" + in.name + "' (" + prefix + ")";
+      r.finish();
+      inputs.push_back(in);
+      continue;
+    }
     in.polygon = r.polygon("vertices");
     if (r.has("fix")) {
       for (const std::string& dof : r.strings("fix")) {
@@ -454,9 +321,15 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
   }
   if (inputs.empty()) top.fail("block", "the scene has no blocks: add [[block]] or [[region]]");
   for (const BlockInput& in : inputs) {
+    if (in.mesh) {
+      addDeformableBlock(m, in.name, in.material, *in.mesh);
+      continue;
+    }
     validateBlockPolygon(in.polygon, m.roundingLength, in.where);
     addBlock(m, in);
   }
+  if (m.jointMaterials.empty() && m.blocks.size() > 1)
+    top.fail("joint_material", "at least one [[joint_material]] is required when the scene has more than one block");
   computeBoundaryGeometry(m);
   for (int b = 0; b < m.blocks.size(); ++b) placeBlockVertices(m, b);
 
@@ -465,6 +338,8 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
       if (m.blocks.name[b] == name) return b;
     r.fail(key, "no block named '" + name + "'");
   };
+  readBoundaries(top, m, path, blockIndex);
+  readInitialStress(top, m);
   for (auto [table, prefix] : top.tables("joint_assignment")) {
     TableReader r(*table, prefix, path);
     const auto names = r.strings("blocks");
@@ -507,6 +382,16 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
       h.block = blockIndex(r, "blocks", names[0]);
       h.otherBlock = blockIndex(r, "blocks", names[1]);
       if (h.block == h.otherBlock) r.fail("blocks", "a joint is between two different blocks");
+    } else if (info->subject == HistorySubject::Gridpoint || info->subject == HistorySubject::Zone) {
+      h.block = blockIndex(r, "block", r.string("block"));
+      if (!m.blocks.deformable[h.block])
+        r.fail("block", "block '" + m.blocks.name[h.block] + "' is rigid: " + std::string(info->name) +
+                            " needs a deformable block; use block.* quantities for a rigid block");
+      const Vec2 point = r.vec2("point");
+      if (info->subject == HistorySubject::Gridpoint) h.gridpoint = nearestGridpoint(m, h.block, point);
+      else h.zone = zoneAt(m, h.block, point);
+      if (h.gridpoint < 0 && h.zone < 0)
+        r.fail("point", "is not inside block '" + m.blocks.name[h.block] + "': a zone history samples the zone that holds the point");
     }
     if (r.has("every")) {
       const long long every = r.integer("every");

@@ -29,10 +29,13 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha) {
     // energy changes by F vbar dt - alpha m vbar^2 dt: the second term is what damping takes.
     const double vbar = 0.5 * (v0 + v1);
     totals.dampingDissipation += alpha * inertia * vbar * vbar * dt;
+    totals.dampingPower += inertia * vbar * vbar;
+    totals.kineticRate += inertia * vbar * (v1 - v0) / dt;
     totals.externalWork += body * v1 * dt;
     return v1;
   };
   for (int b = 0; b < bl.size(); ++b) {
+    if (bl.deformable[b]) continue;
     const std::uint8_t driven = bl.driven[b];
     const double mass = bl.mass[b];
     const Vec2 body = mass * m.gravity + bl.appliedForce[b];

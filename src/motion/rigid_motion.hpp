@@ -11,6 +11,8 @@ struct MotionStepTotals {
   double dampingDissipation = 0.0;  // by mass damping over the step: alpha m vbar^2 dt
   double largestUnbalancedForce = 0.0;
   double largestDisplacement = 0.0; // of any vertex over the step (bounds contact detection)
+  double dampingPower = 0.0;        // sum m vbar^2, for adaptive damping (1.3-23)
+  double kineticRate = 0.0;         // sum m vbar (v1 - v0) / dt
 };
 
 // Advances every block by one step: free degrees of freedom by 1.3-21 (translation and

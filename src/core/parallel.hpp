@@ -1,0 +1,39 @@
+#pragma once
+// Loops over zones and gridpoints on all threads with results that do not depend on the number
+// of threads: every element writes only its own slots, and reductions are formed per fixed-size
+// chunk and then combined in chunk order, so the additions happen in the same order at 1 or N
+// threads.
+#include <cstddef>
+#include <vector>
+
+namespace vdec {
+
+inline constexpr int kReduceChunk = 1024;
+
+// Calls f(i, acc) for i in [0, n), each chunk with its own accumulator starting from T{}, and
+// combines the chunk accumulators in order with combine(total, chunk). f must write only to
+// data owned by element i (and to acc).
+template <class T, class F, class Combine>
+T deterministicReduce(int n, F&& f, Combine&& combine) {
+  const int chunks = (n + kReduceChunk - 1) / kReduceChunk;
+  std::vector<T> partial(static_cast<std::size_t>(chunks));
+#pragma omp parallel for schedule(static)
+  for (int c = 0; c < chunks; ++c) {
+    const int end = (c + 1) * kReduceChunk < n ? (c + 1) * kReduceChunk : n;
+    T acc{};
+    for (int i = c * kReduceChunk; i < end; ++i) f(i, acc);
+    partial[static_cast<std::size_t>(c)] = acc;
+  }
+  T total{};
+  for (const T& p : partial) combine(total, p);
+  return total;
+}
+
+// The sum of f(i) over [0, n), bitwise the same at any thread count.
+template <class F>
+double deterministicSum(int n, F&& f) {
+  return deterministicReduce<double>(
+      n, [&](int i, double& acc) { acc += f(i); }, [](double& total, double part) { total += part; });
+}
+
+}  // namespace vdec

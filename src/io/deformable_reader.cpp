@@ -1,0 +1,314 @@
+#include "io/deformable_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/errors.hpp"
+
+namespace vdec {
+
+void readElasticConstants(TableReader& r, BlockMaterial& mat) {
+  const bool young = r.has("young") || r.has("poisson");
+  const bool bulk = r.has("bulk") || r.has("shear");
+  if (young && bulk) r.fail(r.has("bulk") ? "bulk" : "shear", "give either young and poisson, or bulk and shear");
+  if (young) {
+    const double E = r.positive("young");
+    const double nu = r.number("poisson");
+    if (!(nu > -1.0 && nu < 0.5)) r.fail("poisson", "must be in (-1, 0.5), got " + shown(nu));
+    mat.bulk = E / (3.0 * (1.0 - 2.0 * nu));
+    mat.shear = E / (2.0 * (1.0 + nu));
+  } else if (bulk) {
+    mat.bulk = r.positive("bulk");
+    mat.shear = r.positive("shear");
+  }
+}
+
+namespace {
+
+int positiveCount(TableReader& r, std::string_view key, int limit) {
+  const long long n = r.integer(key);
+  if (n < 1 || n > limit) r.fail(key, "must be an integer in [1, " + std::to_string(limit) + "], got " + std::to_string(n));
+  return static_cast<int>(n);
+}
+
+}  // namespace
+
+std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& vertices) {
+  if (r.has("annulus")) {
+    if (r.has("vertices")) r.fail("vertices", "an annulus block takes its outline from `annulus`; remove `vertices`");
+    if (r.has("zoning")) r.fail("zoning", "an annulus block is zoned by its `annulus` table; remove `zoning`");
+    auto t = r.subtable("annulus");
+    if (!t) r.fail("annulus", "must be a table");
+    AnnulusSpec s;
+    s.centre = t->vec2("centre", {0.0, 0.0});
+    s.inner = t->positive("inner");
+    s.outer = t->positive("outer");
+    if (s.outer <= s.inner) t->fail("outer", "must be larger than inner");
+    const double from = t->number("from", 0.0), to = t->number("to", 90.0);
+    if (!(to > from && to - from <= 360.0)) t->fail("to", "must be above `from` by at most 360 degrees");
+    if (to - from >= 360.0) t->fail("to", "a full ring is not one block: use two half rings or less");
+    s.angle0 = from * std::numbers::pi / 180.0;
+    s.angle1 = to * std::numbers::pi / 180.0;
+    s.radial = positiveCount(*t, "radial", 4096);
+    s.circumferential = positiveCount(*t, "circumferential", 4096);
+    s.grading = t->number("grading", 1.0);
+    if (!(s.grading >= 0.2 && s.grading <= 5.0)) t->fail("grading", "must be in [0.2, 5], got " + shown(s.grading));
+    t->finish();
+    return crossedAnnulusMesh(s);
+  }
+  if (!r.has("zoning")) return std::nullopt;
+  auto t = r.subtable("zoning");
+  if (!t) r.fail("zoning", "must be a table, e.g. zoning = { nx = 8, ny = 4 }");
+  const Polygon p = vertices();
+  if (p.size() != 4) r.fail("zoning", "structured zoning needs a quadrilateral block (4 vertices), got " + std::to_string(p.size()));
+  const int nx = positiveCount(*t, "nx", 4096), ny = positiveCount(*t, "ny", 4096);
+  t->finish();
+  return crossedQuadMesh({p[0], p[1], p[2], p[3]}, nx, ny);
+}
+
+void addDeformableBlock(Model& m, const std::string& name, int material, const Mesh& mesh) {
+  Blocks& b = m.blocks;
+  const int block = b.size();
+  Polygon outline;
+  for (int n : mesh.boundary) outline.push_back(mesh.nodes[n]);
+  const double density = m.blockMaterials[material].density;
+  double area = 0.0;
+  Vec2 moment;
+  for (const auto& t : mesh.triangles) {
+    const Vec2 p0 = mesh.nodes[t[0]], p1 = mesh.nodes[t[1]], p2 = mesh.nodes[t[2]];
+    const double a = 0.5 * cross(p1 - p0, p2 - p0);
+    area += a;
+    moment += (a / 3.0) * (p0 + p1 + p2);
+  }
+  const Vec2 c = (1.0 / area) * moment;
+  b.name.push_back(name);
+  b.material.push_back(material);
+  b.firstVertex.push_back(m.vertices.size());
+  b.vertexCount.push_back(0);  // no contact vertices until contacts on deformable blocks exist
+  b.mass.push_back(density * area);
+  b.inertia.push_back(0.0);
+  b.driven.push_back(0);
+  double radius = 0.0;
+  for (const Vec2& p : outline) radius = std::max(radius, norm(p - c));
+  b.boundingRadius.push_back(radius);
+  b.initialCentroid.push_back(c);
+  b.centroid.push_back(c);
+  b.rotation.push_back(0.0);
+  b.velocity.push_back({});
+  b.angularVelocity.push_back(0.0);
+  b.force.push_back({});
+  b.moment.push_back(0.0);
+  b.appliedForce.push_back({});
+  b.appliedMoment.push_back(0.0);
+  b.deformable.push_back(1);
+
+  Gridpoints& g = m.gridpoints;
+  const int first = g.size();
+  for (const Vec2& p : mesh.nodes) {
+    g.block.push_back(block);
+    g.initialPosition.push_back(p);
+    g.position.push_back(p);
+    g.velocity.push_back({});
+    g.appliedForce.push_back({});
+    g.driven.push_back(0);
+  }
+  Zones& z = m.zones;
+  for (const auto& t : mesh.triangles) {
+    z.gridpoint.push_back({first + t[0], first + t[1], first + t[2]});
+    z.block.push_back(block);
+    z.material.push_back(material);
+    z.sxx.push_back(0.0);
+    z.syy.push_back(0.0);
+    z.sxy.push_back(0.0);
+    z.szz.push_back(0.0);
+  }
+  m.blockBoundaries.push_back({block, {}});
+  for (int n : mesh.boundary) m.blockBoundaries.back().second.push_back(first + n);
+  const MeshQuality q = meshQuality(mesh);
+  if (q.minAngleDegrees < 1.0)
+    throw GeometryError("block '" + name + "': zone " + std::to_string(q.worstTriangle) + " is a sliver (smallest angle " +
+                        shown(q.minAngleDegrees) + " degrees); change the zoning (nx, ny, radial, circumferential, grading)");
+}
+
+namespace {
+
+std::array<double, 3> triple(TableReader& r, std::string_view key) {
+  const toml::node* n = r.node(key);
+  const toml::array* a = n ? n->as_array() : nullptr;
+  if (!a || a->size() != 3 || !(*a)[0].is_number() || !(*a)[1].is_number() || !(*a)[2].is_number())
+    r.fail(key, "must be an array of three numbers [sxx, syy, sxy]");
+  return {*(*a)[0].value<double>(), *(*a)[1].value<double>(), *(*a)[2].value<double>()};
+}
+
+std::array<double, 4> quadruple(TableReader& r, std::string_view key) {
+  const toml::node* n = r.node(key);
+  const toml::array* a = n ? n->as_array() : nullptr;
+  if (!a || a->size() != 4) r.fail(key, "must be an array of four numbers [sxx, syy, sxy, szz]");
+  std::array<double, 4> out{};
+  for (int i = 0; i < 4; ++i) {
+    if (!(*a)[i].is_number()) r.fail(key, "must be an array of four numbers [sxx, syy, sxy, szz]");
+    out[i] = *(*a)[i].value<double>();
+  }
+  return out;
+}
+
+// A closed range [lo, hi] on a coordinate, or everything.
+struct Range {
+  double lo = -INFINITY, hi = INFINITY;
+  bool holds(double v, double slack) const { return v >= lo - slack && v <= hi + slack; }
+};
+
+Range readRange(TableReader& r, std::string_view key) {
+  if (!r.has(key)) return {};
+  const Vec2 v = r.vec2(key);
+  if (v.y < v.x) r.fail(key, "must be [low, high] with low <= high");
+  return {v.x, v.y};
+}
+
+}  // namespace
+
+void readBoundaries(TableReader& top, Model& m, const std::string& path,
+                    const std::function<int(TableReader&, std::string_view, const std::string&)>& blockIndex) {
+  for (auto [table, prefix] : top.tables("boundary")) {
+    TableReader r(*table, prefix, path);
+    const int block = blockIndex(r, "block", r.string("block"));
+    if (!m.blocks.deformable[block])
+      r.fail("block", "block '" + m.blocks.name[block] + "' is rigid: [[boundary]] applies to deformable blocks; "
+                      "give a rigid block `fix`, `velocity` or `force` in its [[block]] table");
+    // Which gridpoints: the ranges on their initial position, all optional.
+    const Range xr = readRange(r, "x"), yr = readRange(r, "y"), rr = readRange(r, "r");
+    Range angle = readRange(r, "angle");
+    const Vec2 centre = r.vec2("centre", {0.0, 0.0});
+    if (!r.has("r") && !r.has("angle") && r.has("centre")) r.fail("centre", "is used only with r or angle");
+    // Selection slack: round-off of the generated coordinates, relative to the block's size.
+    const double slack = 1e-9 * std::max(1.0, 2.0 * m.blocks.boundingRadius[block]);
+    std::vector<char> selected(m.gridpoints.size(), 0);
+    int count = 0;
+    for (int i = 0; i < m.gridpoints.size(); ++i) {
+      if (m.gridpoints.block[i] != block) continue;
+      const Vec2 p = m.gridpoints.initialPosition[i];
+      const Vec2 d = p - centre;
+      const double theta = std::atan2(d.y, d.x) * 180.0 / std::numbers::pi;
+      const bool in = xr.holds(p.x, slack) && yr.holds(p.y, slack) && rr.holds(norm(d), slack) &&
+                      angle.holds(theta, 1e-7);
+      if (in) {
+        selected[i] = 1;
+        ++count;
+      }
+    }
+    if (count == 0) r.failTable("selects no gridpoint of block '" + m.blocks.name[block] + "': check x, y, r, angle");
+
+    const bool fix = r.has("fix"), vx = r.has("velocity_x"), vy = r.has("velocity_y");
+    const bool stress = r.has("stress"), pressure = r.has("pressure");
+    if (!(fix || vx || vy || stress || pressure))
+      r.failTable("sets nothing: give fix, velocity_x, velocity_y, stress or pressure");
+    if ((fix || vx || vy) && (stress || pressure))
+      r.failTable("a boundary either drives gridpoints (fix, velocity) or loads edges (stress, pressure); use two tables");
+    if (stress && pressure) r.fail("pressure", "give either stress or pressure");
+
+    if (fix || vx || vy) {
+      std::uint8_t bits = 0;
+      if (fix)
+        for (const std::string& dof : r.strings("fix")) {
+          const std::uint8_t bit = dof == "x" ? DriveX : dof == "y" ? DriveY : 0;
+          if (!bit) r.fail("fix", "unknown component '" + dof + "'; use \"x\" or \"y\"");
+          bits |= bit;
+        }
+      const double ux = vx ? r.number("velocity_x") : 0.0, uy = vy ? r.number("velocity_y") : 0.0;
+      if ((vx && (bits & DriveX)) || (vy && (bits & DriveY)))
+        r.fail("fix", "a component is both fixed and given a velocity");
+      for (int i = 0; i < m.gridpoints.size(); ++i) {
+        if (!selected[i]) continue;
+        Gridpoints& g = m.gridpoints;
+        g.driven[i] |= bits | (vx ? DriveX : 0) | (vy ? DriveY : 0);
+        if (bits & DriveX) g.velocity[i].x = 0.0;
+        if (bits & DriveY) g.velocity[i].y = 0.0;
+        if (vx) g.velocity[i].x = ux;
+        if (vy) g.velocity[i].y = uy;
+      }
+    } else {
+      std::array<double, 3> s{}, gx{}, gy{};
+      if (pressure) {
+        const double p = r.number("pressure");
+        s = {-p, -p, 0.0};
+      } else {
+        s = triple(r, "stress");
+      }
+      if (r.has("stress_gradient_x")) gx = triple(r, "stress_gradient_x");
+      if (r.has("stress_gradient_y")) gy = triple(r, "stress_gradient_y");
+      int edges = 0;
+      for (const auto& [b, loop] : m.blockBoundaries) {
+        if (b != block) continue;
+        for (std::size_t k = 0; k < loop.size(); ++k) {
+          const int from = loop[k], to = loop[(k + 1) % loop.size()];
+          if (!selected[from] || !selected[to]) continue;
+          const Vec2 mid = 0.5 * (m.gridpoints.initialPosition[from] + m.gridpoints.initialPosition[to]);
+          LoadedEdge e;
+          e.from = from;
+          e.to = to;
+          e.sxx = s[0] + gx[0] * mid.x + gy[0] * mid.y;
+          e.syy = s[1] + gx[1] * mid.x + gy[1] * mid.y;
+          e.sxy = s[2] + gx[2] * mid.x + gy[2] * mid.y;
+          m.loadedEdges.push_back(e);
+          ++edges;
+        }
+      }
+      if (edges == 0)
+        r.failTable("selects no boundary edge of block '" + m.blocks.name[block] +
+                    "': stress and pressure act on edges of the block's outline whose two ends are both selected");
+    }
+    r.finish();
+  }
+}
+
+int nearestGridpoint(const Model& m, int block, Vec2 point) {
+  int best = -1;
+  double bestDistance = INFINITY;
+  for (int i = 0; i < m.gridpoints.size(); ++i) {
+    if (m.gridpoints.block[i] != block) continue;
+    const double d = norm(m.gridpoints.initialPosition[i] - point);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
+int zoneAt(const Model& m, int block, Vec2 point) {
+  const Gridpoints& g = m.gridpoints;
+  for (int z = 0; z < m.zones.size(); ++z) {
+    if (m.zones.block[z] != block) continue;
+    const auto& n = m.zones.gridpoint[z];
+    const Vec2 p0 = g.initialPosition[n[0]], p1 = g.initialPosition[n[1]], p2 = g.initialPosition[n[2]];
+    const double scale = 1e-12 * cross(p1 - p0, p2 - p0);
+    // Inside or on the boundary (the first zone in id order wins a shared edge).
+    if (cross(p1 - p0, point - p0) >= -scale && cross(p2 - p1, point - p1) >= -scale &&
+        cross(p0 - p2, point - p2) >= -scale)
+      return z;
+  }
+  return -1;
+}
+
+void readInitialStress(TableReader& top, Model& m) {
+  auto t = top.subtable("initial_stress");
+  if (!t) return;
+  const double sxx = t->number("sxx", 0.0), syy = t->number("syy", 0.0), sxy = t->number("sxy", 0.0),
+               szz = t->number("szz", 0.0);
+  std::array<double, 4> gx{}, gy{};
+  if (t->has("gradient_x")) gx = quadruple(*t, "gradient_x");
+  if (t->has("gradient_y")) gy = quadruple(*t, "gradient_y");
+  if (m.zones.size() == 0) t->failTable("needs deformable blocks: it sets the stress of zones");
+  for (int z = 0; z < m.zones.size(); ++z) {
+    const auto& n = m.zones.gridpoint[z];
+    const Vec2 c = (1.0 / 3.0) * (m.gridpoints.position[n[0]] + m.gridpoints.position[n[1]] + m.gridpoints.position[n[2]]);
+    m.zones.sxx[z] = sxx + gx[0] * c.x + gy[0] * c.y;
+    m.zones.syy[z] = syy + gx[1] * c.x + gy[1] * c.y;
+    m.zones.sxy[z] = sxy + gx[2] * c.x + gy[2] * c.y;
+    m.zones.szz[z] = szz + gx[3] * c.x + gy[3] * c.y;
+  }
+  t->finish();
+}
+
+}  // namespace vdec

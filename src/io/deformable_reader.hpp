@@ -1,0 +1,36 @@
+#pragma once
+// The deformable-block part of a scene: elastic constants of block materials, zoned blocks
+// (a quadrilateral with `zoning`, or an `annulus`), [[boundary]] conditions on gridpoints and
+// boundary edges, and [initial_stress]. docs/user-manual/scene-format.md documents the keys.
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "core/model.hpp"
+#include "geometry/zoning.hpp"
+#include "io/table_reader.hpp"
+
+namespace vdec {
+
+// `young` and `poisson`, or `bulk` and `shear`, or none (a material for rigid blocks only).
+void readElasticConstants(TableReader& r, BlockMaterial& material);
+
+// The zoning of a [[block]]: `annulus = {...}` (then the block has no `vertices`), or
+// `zoning = {...}` on a quadrilateral given by `vertices`; nullopt for a rigid block.
+std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& vertices);
+
+// Adds a deformable block: its gridpoints and zones, and an entry in Blocks (no contact
+// vertices). Throws GeometryError naming the block for degenerate zones.
+void addDeformableBlock(Model& model, const std::string& name, int material, const Mesh& mesh);
+
+// [[boundary]] tables and [initial_stress]; `blockIndex` resolves a block name or fails on `r`.
+void readBoundaries(TableReader& top, Model& model, const std::string& path,
+                    const std::function<int(TableReader&, std::string_view, const std::string&)>& blockIndex);
+void readInitialStress(TableReader& top, Model& model);
+
+// History subjects by position (initial configuration): the block's gridpoint nearest `point`,
+// and the zone of the block that holds `point` (-1 when none does).
+int nearestGridpoint(const Model& model, int block, Vec2 point);
+int zoneAt(const Model& model, int block, Vec2 point);
+
+}  // namespace vdec

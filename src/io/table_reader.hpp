@@ -1,0 +1,177 @@
+#pragma once
+// Reading one TOML table of a scene: typed getters that remember which keys were used, so that
+// unknown keys are errors, and errors that name the file and line (or the --set override) and
+// the key.
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "core/vec2.hpp"
+#include "geometry/polygon.hpp"
+
+namespace vdec {
+
+
+inline double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
+
+// A value as the user would write it: 1e-09, not 0.000000.
+inline std::string shown(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// Reads one TOML table, remembering which keys were used so that unknown ones are errors.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string prefix, const std::string& file)
+      : table_(table), prefix_(std::move(prefix)), file_(file) {}
+
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const {
+    const toml::node* node = table_.get(key);
+    throw SceneError(where(node ? node->source() : table_.source()) + ": key '" + qualified(key) + "': " + message);
+  }
+  // An error about the table as a whole, e.g. a choice among keys none of which is there.
+  [[noreturn]] void failTable(const std::string& message) const {
+    throw SceneError(where(table_.source()) + ": [" + prefix_ + "]: " + message);
+  }
+  // file:line, or the --set override a value came from (its source path is the override text).
+  std::string where(const toml::source_region& source) const {
+    if (source.path && *source.path != file_) return file_ + ": " + *source.path;
+    if (source.begin.line == 0) return file_ + ": a table made by --set";
+    return file_ + ":" + std::to_string(source.begin.line);
+  }
+  std::string qualified(std::string_view key) const {
+    return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
+  }
+  bool has(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.get(key) != nullptr;
+  }
+  const toml::node* node(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.get(key);
+  }
+
+  double number(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    if (!n->is_number()) fail(key, "must be a number");
+    const double v = *n->value<double>();
+    if (!std::isfinite(v)) fail(key, "must be finite");
+    return v;
+  }
+  double number(std::string_view key, double fallback) { return has(key) ? number(key) : fallback; }
+  double positive(std::string_view key) {
+    const double v = number(key);
+    if (!(v > 0)) fail(key, "must be > 0, got " + shown(v));
+    return v;
+  }
+  double nonNegative(std::string_view key, double fallback) {
+    const double v = number(key, fallback);
+    if (v < 0) fail(key, "must be >= 0, got " + shown(v));
+    return v;
+  }
+  double angleDegrees(std::string_view key, double fallback) {
+    const double v = number(key, fallback);
+    if (v < 0 || v >= 90) fail(key, "must be in [0, 90) degrees, got " + shown(v));
+    return v;
+  }
+  long long integer(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    if (!n->is_integer()) fail(key, "must be an integer");
+    return *n->value<long long>();
+  }
+  std::string string(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    if (!n->is_string()) fail(key, "must be a string");
+    return *n->value<std::string>();
+  }
+  std::string string(std::string_view key, const std::string& fallback) { return has(key) ? string(key) : fallback; }
+  bool boolean(std::string_view key, bool fallback) {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    if (!n->is_boolean()) fail(key, "must be true or false");
+    return *n->value<bool>();
+  }
+  Vec2 vec2(std::string_view key, Vec2 fallback) { return has(key) ? vec2(key) : fallback; }
+  Vec2 vec2(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 2 || !(*a)[0].is_number() || !(*a)[1].is_number())
+      fail(key, "must be an array of two numbers, e.g. [0.0, 1.0]");
+    return {*(*a)[0].value<double>(), *(*a)[1].value<double>()};
+  }
+  Polygon polygon(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    const toml::array* a = n->as_array();
+    if (!a) fail(key, "must be an array of [x, y] points");
+    Polygon p;
+    for (const toml::node& point : *a) {
+      const toml::array* xy = point.as_array();
+      if (!xy || xy->size() != 2 || !(*xy)[0].is_number() || !(*xy)[1].is_number())
+        fail(key, "must be an array of [x, y] points; point " + std::to_string(p.size()) + " is not");
+      p.push_back({*(*xy)[0].value<double>(), *(*xy)[1].value<double>()});
+    }
+    return p;
+  }
+  std::vector<std::string> strings(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    const toml::array* a = n->as_array();
+    if (!a) fail(key, "must be an array of strings");
+    std::vector<std::string> out;
+    for (const toml::node& s : *a) {
+      if (!s.is_string()) fail(key, "must be an array of strings");
+      out.push_back(*s.value<std::string>());
+    }
+    return out;
+  }
+  // Array of tables, e.g. [[block]]; absent means empty.
+  std::vector<std::pair<const toml::table*, std::string>> tables(std::string_view key) {
+    std::vector<std::pair<const toml::table*, std::string>> out;
+    const toml::node* n = node(key);
+    if (!n) return out;
+    const toml::array* a = n->as_array();
+    if (!a || !a->is_array_of_tables()) fail(key, "must be an array of tables, written [[" + qualified(key) + "]]");
+    for (std::size_t i = 0; i < a->size(); ++i)
+      out.emplace_back((*a)[i].as_table(), qualified(key) + "[" + std::to_string(i) + "]");
+    return out;
+  }
+  std::optional<TableReader> subtable(std::string_view key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (!n->is_table()) fail(key, "must be a table, written [" + qualified(key) + "]");
+    return TableReader(*n->as_table(), qualified(key), file_);
+  }
+  // Unknown keys are errors: a misspelt key must never be silently ignored.
+  void finish() const {
+    for (auto&& [key, value] : table_)
+      if (!used_.count(std::string(key.str()))) {
+        throw SceneError(where(value.source()) + ": key '" + qualified(key.str()) + "': unknown key");
+      }
+  }
+  const toml::table& table() const { return table_; }
+  const std::string& file() const { return file_; }
+
+ private:
+  const toml::table& table_;
+  std::string prefix_;
+  std::string file_;
+  std::set<std::string> used_;
+};
+
+}  // namespace vdec

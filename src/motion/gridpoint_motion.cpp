@@ -1,0 +1,84 @@
+#include "motion/gridpoint_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.hpp"
+
+namespace vdec {
+
+void applyEdgeTractions(Model& m) {
+  Gridpoints& g = m.gridpoints;
+  std::fill(g.appliedForce.begin(), g.appliedForce.end(), Vec2{});
+  for (const LoadedEdge& e : m.loadedEdges) {
+    // Outward normal times length of a counter-clockwise boundary edge: (dy, -dx).
+    const Vec2 d = g.position[e.to] - g.position[e.from];
+    const Vec2 nL{d.y, -d.x};
+    const Vec2 traction{e.sxx * nL.x + e.sxy * nL.y, e.sxy * nL.x + e.syy * nL.y};
+    g.appliedForce[e.from] += 0.5 * traction;
+    g.appliedForce[e.to] += 0.5 * traction;
+  }
+}
+
+GridpointStepTotals integrateGridpoints(Model& m, double dt, double alpha) {
+  Gridpoints& g = m.gridpoints;
+  const Zones& zn = m.zones;
+  const GridpointZones& gz = m.gridpointZones;
+  const double lose = 1.0 - 0.5 * alpha * dt, keep = 1.0 / (1.0 + 0.5 * alpha * dt);
+  const Vec2 gravity = m.gravity;
+  auto step = [&](int i, GridpointStepTotals& t) {
+    Vec2 zoneForce;
+    double zoneMagnitude = 0.0;
+    for (int k = gz.start[i]; k < gz.start[i + 1]; ++k) {
+      const Vec2 f = zn.nodalForce[gz.slot[k] / 3][gz.slot[k] % 3];
+      zoneForce += f;
+      zoneMagnitude += norm(f);
+    }
+    const Vec2 body = g.gravityMass[i] * gravity + g.appliedForce[i];
+    const Vec2 load = zoneForce + body;
+    const Vec2 v0 = g.velocity[i];
+    Vec2 v1 = v0;
+    const double mass = g.mass[i];
+    double unbalanced = 0.0;
+    bool free = false;
+    auto advance = [&](bool driven, double u0, double force, double bodyForce, double zone) {
+      if (driven) {
+        t.externalWork -= zone * u0 * dt;  // the driver's work on the block through the zones
+        return u0;
+      }
+      free = true;
+      unbalanced += force * force;
+      const double u1 = keep * (lose * u0 + (dt / mass) * force);
+      const double ubar = 0.5 * (u0 + u1);
+      t.kineticEnergy += 0.25 * mass * (u0 * u0 + u1 * u1);
+      t.externalWork += bodyForce * u1 * dt;
+      t.dampingDissipation += alpha * mass * ubar * ubar * dt;
+      t.dampingPower += mass * ubar * ubar;
+      t.kineticRate += mass * ubar * (u1 - u0) / dt;
+      return u1;
+    };
+    v1.x = advance(g.driven[i] & DriveX, v0.x, load.x, body.x, zoneForce.x);
+    v1.y = advance(g.driven[i] & DriveY, v0.y, load.y, body.y, zoneForce.y);
+    if (free) {
+      t.largestUnbalancedForce = std::max(t.largestUnbalancedForce, std::sqrt(unbalanced));
+      t.sumForceMagnitude += zoneMagnitude;
+      ++t.freeGridpoints;
+    }
+    g.velocity[i] = v1;
+    g.position[i] += dt * v1;
+    t.largestDisplacement = std::max(t.largestDisplacement, norm(v1) * dt);
+  };
+  return deterministicReduce<GridpointStepTotals>(g.size(), step, [](GridpointStepTotals& a, const GridpointStepTotals& b) {
+    a.kineticEnergy += b.kineticEnergy;
+    a.externalWork += b.externalWork;
+    a.dampingDissipation += b.dampingDissipation;
+    a.largestUnbalancedForce = std::max(a.largestUnbalancedForce, b.largestUnbalancedForce);
+    a.sumForceMagnitude += b.sumForceMagnitude;
+    a.freeGridpoints += b.freeGridpoints;
+    a.largestDisplacement = std::max(a.largestDisplacement, b.largestDisplacement);
+    a.dampingPower += b.dampingPower;
+    a.kineticRate += b.kineticRate;
+  });
+}
+
+}  // namespace vdec

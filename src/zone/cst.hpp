@@ -1,0 +1,30 @@
+#pragma once
+// Constant-strain triangles of deformable blocks (NUREG/CR-5429 1.3.3.3, 1.4-105 to 1.4-117):
+// strain rates from the gridpoint velocities (Wilkins' integral, exact for a triangle), the
+// rotation of the stress with the zone, the plane-strain elastic law with szz tracked, and the
+// forces each zone puts on its gridpoints.
+#include "core/model.hpp"
+
+namespace vdec {
+
+struct ZoneStepTotals {
+  double strainEnergy = 0.0;  // J/m, sum over zones of the elastic energy density times area
+};
+
+// One step: updates every zone's stress from the velocities of the half step just ended and
+// stores the zone's nodal forces (Zones::nodalForce) for the gridpoints to gather. Throws
+// InstabilityError naming the zone if a zone turns inside out.
+ZoneStepTotals computeZoneForces(Model& model, double dt);
+
+// Elastic energy density of a plane-strain stress state: p^2 / 2K + s:s / 4G.
+double elasticEnergyDensity(double sxx, double syy, double sxy, double szz, double bulk, double shear);
+
+// Set-up: gridpoint masses (rho A / 3 from each zone), the stiffness estimate k_i of 1.3-26 and
+// 1.3-27, and the gridpoint-to-zone index. Throws GeometryError naming the block and zone for
+// a zone of zero or negative area.
+void prepareZones(Model& model);
+
+// dt_z = 2 min_i sqrt(m_i / k_i) (1.3-25); infinity without zones.
+double zoneTimeStep(const Model& model);
+
+}  // namespace vdec

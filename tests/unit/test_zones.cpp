@@ -1,0 +1,274 @@
+// Deformable blocks: zoning, the constant-strain triangle, objectivity, determinism over threads.
+#include <omp.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "core/cycle.hpp"
+#include "core/errors.hpp"
+#include "geometry/zoning.hpp"
+#include "requirements.hpp"
+#include "scene_fixture.hpp"
+#include "zone/cst.hpp"
+
+using namespace vdec;
+using vdec::testing::sceneFromText;
+
+namespace {
+
+// A distorted quadrilateral block of an elastic material, crossed-zoned nx x ny.
+std::string quadScene(int nx, int ny, const std::string& extra = "") {
+  return R"(
+[model]
+rounding = 0.01
+[stop]
+cycles = 10
+[[block_material]]
+name = "rock"
+density = 2500.0
+young = 10e9
+poisson = 0.25
+[[block]]
+name = "patch"
+material = "rock"
+vertices = [[0.0, 0.0], [2.0, 0.3], [2.4, 1.9], [-0.2, 1.5]]
+zoning = { nx = )" + std::to_string(nx) + ", ny = " + std::to_string(ny) + " }\n" + extra;
+}
+
+std::string sceneError(const std::string& text, const std::string& name) {
+  try {
+    sceneFromText(text, name);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Zoning, CrossedQuadHasFourTrianglesPerCellAndCoversTheBlock) {
+  VDEC_REQUIREMENTS("REQ-ZONE-001");
+  const Mesh mesh = crossedQuadMesh({Vec2{0, 0}, Vec2{2, 0}, Vec2{2, 1}, Vec2{0, 1}}, 4, 2);
+  EXPECT_EQ(mesh.triangles.size(), 4u * 4 * 2);
+  EXPECT_EQ(mesh.nodes.size(), 5u * 3 + 4 * 2);
+  EXPECT_EQ(mesh.boundary.size(), 2u * (4 + 2));
+  double area = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const double a = 0.5 * cross(mesh.nodes[t[1]] - mesh.nodes[t[0]], mesh.nodes[t[2]] - mesh.nodes[t[0]]);
+    EXPECT_GT(a, 0.0);  // counter-clockwise
+    area += a;
+  }
+  EXPECT_NEAR(area, 2.0, 1e-14);
+  const MeshQuality q = meshQuality(mesh);
+  EXPECT_NEAR(q.minAngleDegrees, 45.0, 1e-9);  // square cells: right isosceles triangles
+  EXPECT_NEAR(q.maxAspectRatio, 2.0, 1e-12);
+}
+
+TEST(Zoning, GradedAnnulusHasGeometricRadiiAndItsPolygonArea) {
+  VDEC_REQUIREMENTS("REQ-ZONE-001");
+  AnnulusSpec s;
+  s.inner = 1.0;
+  s.outer = 4.0;
+  s.angle0 = 0.0;
+  s.angle1 = std::numbers::pi / 2;
+  s.radial = 3;
+  s.circumferential = 6;
+  s.grading = 2.0;
+  const Mesh mesh = crossedAnnulusMesh(s);
+  // Radii 1, 1 + 3/7, 1 + 9/7, 4: cells 3/7, 6/7, 12/7 thick.
+  EXPECT_NEAR(norm(mesh.nodes[1]), 1.0 + 3.0 / 7.0, 1e-14);
+  EXPECT_NEAR(norm(mesh.nodes[2]), 1.0 + 9.0 / 7.0, 1e-14);
+  EXPECT_DOUBLE_EQ(norm(mesh.nodes[3]), 4.0);
+  // The zoned area is that of the polygons: (b^2 - a^2)/2 * n sin(dtheta).
+  double area = 0.0;
+  for (const auto& t : mesh.triangles)
+    area += 0.5 * cross(mesh.nodes[t[1]] - mesh.nodes[t[0]], mesh.nodes[t[2]] - mesh.nodes[t[0]]);
+  const double dtheta = std::numbers::pi / 12;
+  EXPECT_NEAR(area, 0.5 * (16.0 - 1.0) * 6 * std::sin(dtheta), 1e-12);
+}
+
+TEST(Zones, PatchTestIsExactToRoundOff) {
+  VDEC_REQUIREMENTS("REQ-ZONE-002");
+  // Every gridpoint of a distorted mesh moves with one linear velocity field. Each zone must
+  // then take the same strain increment, reach the stress of plane-strain elasticity for it,
+  // and the zones must leave no net force on any interior gridpoint.
+  Scene s = sceneFromText(quadScene(3, 4), "patch");
+  Model& m = s.model;
+  prepareZones(m);
+  const double dt = 1e-3;
+  const double a1 = 2e-4, a2 = -1e-4, b1 = 3e-4, b2 = 5e-5;  // du/dt: vx = a1 x + a2 y, vy = b1 x + b2 y
+  for (int i = 0; i < m.gridpoints.size(); ++i) {
+    const Vec2 p = m.gridpoints.position[i];
+    m.gridpoints.velocity[i] = {a1 * p.x + a2 * p.y, b1 * p.x + b2 * p.y};
+    // The increment brings the gridpoint to where it now is.
+    m.gridpoints.position[i] += dt * m.gridpoints.velocity[i];
+  }
+  computeZoneForces(m, dt);
+  const double K = 10e9 / (3 * 0.5), G = 10e9 / 2.5;
+  // Strain increments on the half-step configuration x - v dt/2 = (I + L dt/2) x0 (L the
+  // velocity gradient on the start): dt L (I + L dt/2)^-1, symmetric part; the spin rotates a
+  // zero stress to zero.
+  const double h = 0.5 * dt;
+  const double i11 = 1 + h * a1, i12 = h * a2, i21 = h * b1, i22 = 1 + h * b2, det = i11 * i22 - i12 * i21;
+  const double n11 = i22 / det, n12 = -i12 / det, n21 = -i21 / det, n22 = i11 / det;  // (I + L dt/2)^-1
+  const double g11 = a1 * n11 + a2 * n21, g12 = a1 * n12 + a2 * n22;  // L (I + L dt/2)^-1
+  const double g21 = b1 * n11 + b2 * n21, g22 = b1 * n12 + b2 * n22;
+  const double exx = g11 * dt, eyy = g22 * dt, exy = 0.5 * (g12 + g21) * dt;
+  const double sxx = (K + 4 * G / 3) * exx + (K - 2 * G / 3) * eyy;
+  const double syy = (K - 2 * G / 3) * exx + (K + 4 * G / 3) * eyy;
+  const double sxy = 2 * G * exy, szz = (K - 2 * G / 3) * (exx + eyy);
+  for (int z = 0; z < m.zones.size(); ++z) {
+    EXPECT_NEAR(m.zones.sxx[z], sxx, 1e-9 * std::abs(sxx));
+    EXPECT_NEAR(m.zones.syy[z], syy, 1e-9 * std::abs(syy));
+    EXPECT_NEAR(m.zones.sxy[z], sxy, 1e-9 * std::abs(sxy));
+    EXPECT_NEAR(m.zones.szz[z], szz, 1e-9 * std::abs(szz));
+  }
+  std::vector<char> boundary(m.gridpoints.size(), 0);
+  for (int i : m.blockBoundaries[0].second) boundary[i] = 1;
+  const double scale = std::abs(sxx) * 0.5;  // stress times a zone edge
+  int interior = 0;
+  for (int i = 0; i < m.gridpoints.size(); ++i) {
+    if (boundary[i]) continue;
+    Vec2 f;
+    for (int k = m.gridpointZones.start[i]; k < m.gridpointZones.start[i + 1]; ++k) {
+      const int slot = m.gridpointZones.slot[k];
+      f += m.zones.nodalForce[slot / 3][slot % 3];
+    }
+    EXPECT_LT(norm(f), 1e-12 * scale) << "gridpoint " << i;
+    ++interior;
+  }
+  EXPECT_GT(interior, 10);
+}
+
+TEST(Zones, RigidRotationRotatesTheStressExactly) {
+  VDEC_REQUIREMENTS("REQ-ZONE-003");
+  // A zoned block with a stress in it turns rigidly by 90 degrees in 40 steps about a point:
+  // sxx and syy must swap and sxy change sign, to round-off, with no strain on the way.
+  Scene s = sceneFromText(quadScene(2, 2), "rotate");
+  Model& m = s.model;
+  prepareZones(m);
+  for (int z = 0; z < m.zones.size(); ++z) {
+    m.zones.sxx[z] = -3e6;
+    m.zones.syy[z] = -1e6;
+    m.zones.sxy[z] = 0.5e6;
+    m.zones.szz[z] = -1e6;
+  }
+  const int steps = 40;
+  const double dt = 1e-3, step = 0.5 * std::numbers::pi / steps;
+  const double c = std::cos(step), sn = std::sin(step);
+  const Vec2 centre{0.7, 0.4};
+  for (int n = 0; n < steps; ++n) {
+    for (int i = 0; i < m.gridpoints.size(); ++i) {
+      const Vec2 r = m.gridpoints.position[i] - centre;
+      const Vec2 turned = centre + Vec2{c * r.x - sn * r.y, sn * r.x + c * r.y};
+      m.gridpoints.velocity[i] = (1.0 / dt) * (turned - m.gridpoints.position[i]);
+      m.gridpoints.position[i] = turned;
+    }
+    computeZoneForces(m, dt);
+  }
+  for (int z = 0; z < m.zones.size(); ++z) {
+    EXPECT_NEAR(m.zones.sxx[z], -1e6, 1e-6 * 1e6);
+    EXPECT_NEAR(m.zones.syy[z], -3e6, 1e-6 * 1e6);
+    EXPECT_NEAR(m.zones.sxy[z], -0.5e6, 1e-6 * 1e6);
+    EXPECT_NEAR(m.zones.szz[z], -1e6, 1e-6 * 1e6);
+  }
+}
+
+TEST(Zones, ResultsAreBitwiseTheSameOnOneAndTwoThreads) {
+  VDEC_REQUIREMENTS("REQ-ZONE-004");
+  auto runWith = [](int threads) {
+    omp_set_num_threads(threads);
+    // Enough zones for several reduction chunks: 32 x 40 cells, 5120 zones.
+    Scene s = sceneFromText(quadScene(32, 40, R"(
+[solver]
+mass_damping = 50.0
+[[boundary]]
+block = "patch"
+y = [-0.01, 0.31]
+x = [-0.01, 2.01]
+fix = ["x", "y"]
+[[boundary]]
+block = "patch"
+y = [1.49, 1.91]
+x = [-0.21, 2.41]
+stress = [0.0, -2e6, 1e5]
+)"), "threads");
+    s.settings.stop.cycles = 300;
+    Cycle cycle(s.model, s.settings, {});
+    const RunReport r = cycle.run();
+    EXPECT_EQ(r.errorCode, 0) << r.error;
+    return std::make_pair(s.model, r);
+  };
+  const auto [one, reportOne] = runWith(1);
+  const auto [two, reportTwo] = runWith(2);
+  omp_set_num_threads(omp_get_num_procs());
+  ASSERT_EQ(one.gridpoints.size(), two.gridpoints.size());
+  for (int i = 0; i < one.gridpoints.size(); ++i) {
+    EXPECT_EQ(one.gridpoints.position[i].x, two.gridpoints.position[i].x);
+    EXPECT_EQ(one.gridpoints.position[i].y, two.gridpoints.position[i].y);
+  }
+  for (int z = 0; z < one.zones.size(); ++z) EXPECT_EQ(one.zones.syy[z], two.zones.syy[z]);
+  EXPECT_EQ(reportOne.energy.kinetic, reportTwo.energy.kinetic);
+  EXPECT_EQ(reportOne.energy.strain, reportTwo.energy.strain);
+  EXPECT_GT(one.zones.size(), 4 * 1024);  // several reduction chunks
+}
+
+TEST(Zones, BadZoningAndBoundaryInputAreErrorsNamingTheKey) {
+  VDEC_REQUIREMENTS("REQ-ZONE-005");
+  std::string triangle = quadScene(2, 2);
+  const std::string quad = "[[0.0, 0.0], [2.0, 0.3], [2.4, 1.9], [-0.2, 1.5]]";
+  triangle.replace(triangle.find(quad), quad.size(), "[[0.0, 0.0], [2.0, 0.3], [2.4, 1.9]]");
+  EXPECT_NE(sceneError(triangle, "z-triangle").find("needs a quadrilateral block (4 vertices), got 3"), std::string::npos)
+      << sceneError(triangle, "z-triangle");
+  std::string rigid = quadScene(2, 2);
+  const std::string elastic = "young = 10e9\npoisson = 0.25\n";
+  rigid.replace(rigid.find(elastic), elastic.size(), "");
+  EXPECT_NE(sceneError(rigid, "z-rigid").find("needs an elastic material"), std::string::npos);
+  EXPECT_NE(sceneError(quadScene(0, 2), "z-zero").find("key 'block[0].zoning.nx': must be an integer in [1,"),
+            std::string::npos)
+      << sceneError(quadScene(0, 2), "z-zero");
+  const std::string nothing = quadScene(2, 2, "[[boundary]]\nblock = \"patch\"\nx = [5.0, 6.0]\nfix = [\"x\"]\n");
+  EXPECT_NE(sceneError(nothing, "z-nothing").find("selects no gridpoint of block 'patch'"), std::string::npos);
+  // A stress on gridpoints that are not two ends of an outline edge: the block's centre.
+  const std::string inside =
+      quadScene(2, 2, "[[boundary]]\nblock = \"patch\"\nx = [0.5, 1.5]\ny = [0.5, 1.2]\npressure = 1e6\n");
+  EXPECT_NE(sceneError(inside, "z-inside").find("selects no boundary edge"), std::string::npos)
+      << sceneError(inside, "z-inside");
+  const std::string both = quadScene(2, 2, "[[boundary]]\nblock = \"patch\"\ny = [0.0, 0.3]\nfix = [\"y\"]\npressure = 1e6\n");
+  EXPECT_NE(sceneError(both, "z-both").find("either drives gridpoints"), std::string::npos);
+  const std::string poisson = quadScene(2, 2);
+  EXPECT_NE(sceneError(std::string(poisson).replace(poisson.find("poisson = 0.25"), 14, "poisson = 0.5"), "z-nu")
+                .find("key 'block_material[0].poisson': must be in (-1, 0.5)"),
+            std::string::npos);
+}
+
+TEST(Zones, HistoriesThatNameNothingAndDeformableBlocksNearOthersAreErrors) {
+  VDEC_REQUIREMENTS("REQ-ZONE-005");
+  const std::string outside = quadScene(2, 2, "[[history]]\nname = \"s\"\nquantity = \"zone.syy\"\nblock = \"patch\"\npoint = [9.0, 9.0]\n");
+  EXPECT_NE(sceneError(outside, "h-outside").find("key 'history[0].point': is not inside block 'patch'"), std::string::npos)
+      << sceneError(outside, "h-outside");
+  const std::string noPoint = quadScene(2, 2, "[[history]]\nname = \"u\"\nquantity = \"gridpoint.displacement_x\"\nblock = \"patch\"\n");
+  EXPECT_NE(sceneError(noPoint, "h-nopoint").find("key 'history[0].point': is required"), std::string::npos);
+  // A rigid block beside the deformable one, within the contact tolerance: contacts on
+  // deformable blocks do not exist yet, so the run must refuse rather than let them pass.
+  const std::string neighbour = quadScene(2, 2, R"(
+[[joint_material]]
+name = "j"
+kn = 1e9
+ks = 1e9
+[[block]]
+name = "wall"
+material = "rock"
+vertices = [[2.405, 0.0], [3.5, 0.0], [3.5, 2.0], [2.405, 2.0]]
+fix = ["x", "y", "rotation"]
+)");
+  Scene s = sceneFromText(neighbour, "near");
+  try {
+    Cycle cycle(s.model, s.settings, {});
+    FAIL() << "a deformable block near another block was accepted";
+  } catch (const GeometryError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("block 'patch' is deformable and within the contact tolerance of block 'wall'"), std::string::npos)
+        << what;
+  }
+}
