@@ -147,7 +147,7 @@ void Cycle::buildStages() {
                          step_.kineticRate += t.kineticRate;
                        }});
   }
-  stages_.push_back({"end-of-step", [this] { finishStep(); }});
+  stages_.push_back({"end-of-step", [this] { finishStep(); }, 0.0, false});
   if (!historySpecs_.empty()) stages_.push_back({"histories", [this] { recordHistories(false); }});
 }
 
@@ -283,6 +283,7 @@ RunReport Cycle::run() {
   report.time = model_.time;
   report.dt = dt_;
   for (const Stage& s : stages_) {
+    if (!s.listed) continue;
     report.stages.push_back(s.name);
     report.profile.push_back({s.name, s.seconds});
   }

@@ -75,6 +75,7 @@ class Cycle {
     std::string name;
     std::function<void()> step;
     double seconds = 0.0;
+    bool listed = true;  // false for the step's own bookkeeping, which is no model stage
   };
   // Sums the stages of one step contribute to, closed by finishStep.
   struct StepTotals {

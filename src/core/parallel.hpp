@@ -17,7 +17,8 @@ template <class T, class F, class Combine>
 T deterministicReduce(int n, F&& f, Combine&& combine) {
   const int chunks = (n + kReduceChunk - 1) / kReduceChunk;
   std::vector<T> partial(static_cast<std::size_t>(chunks));
-#pragma omp parallel for schedule(static)
+  // One chunk is not worth waking the other threads for.
+#pragma omp parallel for schedule(static) if (chunks > 1)
   for (int c = 0; c < chunks; ++c) {
     const int end = (c + 1) * kReduceChunk < n ? (c + 1) * kReduceChunk : n;
     T acc{};

@@ -514,78 +514,14 @@ def test_step_pulse_stress_is_the_constrained_modulus_times_the_strain():
     np.testing.assert_allclose(sigma, expected, rtol=1.5e-3)
 
 
-# ---------------------------------------------------------------- convergence helpers
-
-
 @REQ
-def test_observed_order_known_values():
-    # error = 3 h^1.7 exactly: slope 1.7
-    h = np.array([0.4, 0.2, 0.1, 0.05])
-    assert el.observed_order(h=h, error=3.0 * h ** 1.7) == pytest.approx(1.7, rel=1e-12)
-    # h = 1, 1/2, 1/4 with errors 1, 0.3, 0.1: log h equally spaced, so the least-squares slope is the end
-    # points' slope (the middle point has zero lever arm): ln(1 / 0.1) / ln(1 / 0.25) = ln 10 / ln 4 = 1.660964047
-    assert el.observed_order(h=[1.0, 0.5, 0.25], error=[1.0, 0.3, 0.1]) == pytest.approx(1.660964047, rel=1e-9)
-    with pytest.raises(ValueError):
-        el.observed_order(h=[1.0], error=[1.0])
-    with pytest.raises(ValueError):
-        el.observed_order(h=[1.0, 0.5], error=[1.0, 0.0])
-
-
-@REQ
-def test_gci_constant_ratio_hand_example():
-    # f = 1 + h^2 on h = 1, 2, 4: phi = 2, 5, 17; e21 = 3, e32 = 12, r = 2, p = ln(12/3)/ln 2 = 2;
-    # extrapolated = (4 * 2 - 5) / 3 = 1; gci_fine = 1.25 * |3 / 2| / 3 = 0.625;
-    # GCI_12 = 1.25 * 3 / 3 = 1.25, GCI_23 = 1.25 * 12 / 3 = 5, ratio = 5 / (4 * 1.25) = 1
-    p, ext, g, ratio = el.gci(h=[1.0, 2.0, 4.0], values=[2.0, 5.0, 17.0])
-    assert (p, ext, g, ratio) == (pytest.approx(2.0, rel=1e-13), pytest.approx(1.0, rel=1e-13),
-                                  pytest.approx(0.625, rel=1e-13), pytest.approx(1.0, rel=1e-13))
-    # grids given coarse first give the same answer
-    assert el.gci(h=[4.0, 2.0, 1.0], values=[17.0, 5.0, 2.0]) == pytest.approx((p, ext, g, ratio), rel=1e-13)
-    # Fs = 3 (Roache's value for two-grid studies) scales the GCI only
-    assert el.gci(h=[1.0, 2.0, 4.0], values=[2.0, 5.0, 17.0], Fs=3.0)[2] == pytest.approx(1.5, rel=1e-13)
-    # oscillatory: phi = 1.0, 1.1, 0.7: e21 = 0.1, e32 = -0.4, s = -1; with r21 = r32 q = 0 and p = ln 4 / ln 2 = 2;
-    # extrapolated = (4 * 1 - 1.1) / 3 = 0.9666667
-    p, ext, _, _ = el.gci(h=[1.0, 2.0, 4.0], values=[1.0, 1.1, 0.7])
-    assert (p, ext) == (pytest.approx(2.0, rel=1e-13), pytest.approx(0.96666666667, rel=1e-10))
-
-
-@REQ
-def test_gci_synthetic_second_order_sequence_with_unequal_ratios():
-    # f = f0 + C h^2, f0 = 1, C = 0.5, h = 0.1, 0.13, 0.2 (r21 = 1.3, r32 = 1.538): the fixed point is p = 2 since
-    # e32 / e21 = r21^2 (r32^2 - 1) / (r21^2 - 1) and q(2) = ln((r21^2 - 1) / (r32^2 - 1));
-    # extrapolated = f0 = 1; gci_fine = 1.25 C h1^2 / phi1 = 1.25 * 0.005 / 1.005 = 6.2189055e-3; ratio 1
-    h = np.array([0.1, 0.13, 0.2])
-    p, ext, g, ratio = el.gci(h=h, values=1.0 + 0.5 * h ** 2)
-    assert p == pytest.approx(2.0, rel=1e-10)
-    assert ext == pytest.approx(1.0, rel=1e-12)
-    assert g == pytest.approx(6.2189055e-3, rel=1e-7)
-    assert ratio == pytest.approx(1.0, rel=1e-10)
-    # an order that is not an integer, decreasing towards f0 from below, strongly unequal ratios
-    h = np.array([0.01, 0.017, 0.05])
-    p, ext, _, ratio = el.gci(h=h, values=3.0 - 2.0 * h ** 1.5)
-    assert p == pytest.approx(1.5, rel=1e-10)
-    assert ext == pytest.approx(3.0, rel=1e-12)
-    assert ratio == pytest.approx(1.0, rel=1e-10)
-    # the observed order of the errors of the same sequence agrees
-    assert el.observed_order(h=h, error=np.abs(3.0 - 2.0 * h ** 1.5 - 3.0)) == pytest.approx(1.5, rel=1e-12)
-
-
-@REQ
-def test_gci_reproduces_the_worked_example_of_celik_et_al():
-    # Celik et al. (2008), Table 1, first column: r21 = 1.5, r32 = 1.333 (N = 18000, 8000, 4500 cells in 2D),
-    # phi = 6.063, 5.972, 5.863; printed p = 1.53, phi_ext = 6.1685, GCI_fine = 2.2 %
-    h = np.array([1.0, 1.5, 2.0])
-    p, ext, g, _ = el.gci(h=h, values=[6.063, 5.972, 5.863])
-    assert p == pytest.approx(1.53, abs=0.005)
-    assert ext == pytest.approx(6.1685, abs=5e-5)
-    assert g == pytest.approx(0.022, abs=5e-4)
-
-
-@REQ
-def test_gci_rejects_bad_input():
-    with pytest.raises(ValueError):  # two grids only
-        el.gci(h=[1.0, 2.0], values=[1.0, 2.0])
-    with pytest.raises(ValueError):  # repeated h
-        el.gci(h=[1.0, 1.0, 2.0], values=[1.0, 2.0, 3.0])
-    with pytest.raises(ValueError):  # no change between the fine grids
-        el.gci(h=[1.0, 2.0, 4.0], values=[1.0, 1.0, 3.0])
+def test_homogeneous_displacement_of_a_uniaxial_sample():
+    # E = 10 GPa, nu = 0.25, syy = -1 MPa, sxx = 0: exx = -nu (1 + nu) syy / E = 0.3125e-4,
+    # eyy = (1 - nu^2) syy / E = -0.9375e-4; at (1, 2) from the origin: (3.125e-5, -1.875e-4).
+    ux, uy = el.plane_strain_homogeneous_displacement(x=np.array([1.0, 0.0]), y=np.array([2.0, 0.0]), sigma_xx=0.0,
+                                                      sigma_yy=-1e6, **ROCK)
+    assert ux == pytest.approx([3.125e-5, 0.0], rel=1e-12, abs=1e-20)
+    assert uy == pytest.approx([-1.875e-4, 0.0], rel=1e-12, abs=1e-20)
+    # Held elsewhere: the field shifts with the held point.
+    ux, uy = el.plane_strain_homogeneous_displacement(x=1.0, y=2.0, sigma_xx=0.0, sigma_yy=-1e6, x0=1.0, y0=1.0, **ROCK)
+    assert ux == pytest.approx(0.0, abs=1e-20) and uy == pytest.approx(-0.9375e-4, rel=1e-12)

@@ -11,6 +11,7 @@ from vdec_verify.extract import Series
 from vdec_verify.norms import NOT_INDEPENDENT, ReferenceProblem, evaluate_reference
 from vdec_verify.problem import ProblemError, Reference, load_problem
 from vdec_verify.runner import Entry, discover, judge, run_suite, select
+from problem_files import write_problem
 
 FAKE_VDEC = Path(__file__).parent / "fixtures" / "harness" / "fake_vdec.py"
 
@@ -27,14 +28,6 @@ norm = "scalar"
 rtol = 1e-3
 justification = "j"
 '''
-
-
-def write_problem(root, text, folder="X-1"):
-    path = Path(root) / folder
-    path.mkdir(parents=True, exist_ok=True)
-    (path / "scene.toml").write_text('title = "fake"\n')
-    (path / "problem.toml").write_text(text)
-    return path / "problem.toml"
 
 
 def mutated(old, new):
@@ -118,7 +111,8 @@ BAD_PROBLEMS = [
     ('scene = "scene.toml"\n', 'scene = "scene.toml"\nexpect_exit = "zero"\n', "expect_exit", "not an exit code"),
     ('scene = "scene.toml"\n', 'scene = "scene.toml"\noverrides = ["solver.frac"]\n', "overrides", "key.path=value"),
     ('scene = "scene.toml"\n', 'scene = "scene.toml"\ntimeout_seconds = -1\n', "timeout_seconds", "positive"),
-    ('scene = "scene.toml"\n', 'scene = "scene.toml"\n[refinement]\nlevels = 3\n', "refinement", "not implemented yet"),
+    ('scene = "scene.toml"\n', 'scene = "scene.toml"\n[refinement]\nlevels = 3\n', r"refinement\.levels",
+     "unknown key"),
     ('justification = "j"\n', "", r"check\[0\]\.justification", "is required"),
     ('justification = "j"', 'justification = "  "', r"check\[0\]\.justification", "why the tolerance is fair"),
     ('quantity = "q"\n', "", r"check\[0\]\.quantity", "is required"),

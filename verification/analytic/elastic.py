@@ -107,6 +107,16 @@ def plane_strain_uniaxial(*, E, nu, sigma_yy):
     return plane_strain_biaxial(E=E, nu=nu, sigma_xx=0.0, sigma_yy=sigma_yy)
 
 
+def plane_strain_homogeneous_displacement(*, x, y, E, nu, sigma_xx, sigma_yy, x0=0.0, y0=0.0):
+    """(u_x, u_y) of a sample under uniform sigma_xx, sigma_yy (no shear, plane strain) held at
+    (x0, y0) without rotation: u_x = e_xx (x - x0), u_y = e_yy (y - y0), the strains of
+    plane_strain_biaxial. A sample on rollers along y = y0 with the corner (x0, y0) fixed is
+    held so.
+    """
+    exx, eyy, _ = plane_strain_biaxial(E=E, nu=nu, sigma_xx=sigma_xx, sigma_yy=sigma_yy)
+    return exx * (_arr(x) - x0), eyy * (_arr(y) - y0)
+
+
 def young_poisson_from_plane_strain_uniaxial(*, sigma_yy, exx, eyy):
     """(E, nu) recovered from a plane-strain uniaxial test (sigma_xx = 0, e_zz = 0) with measured
     sigma_yy, e_xx, e_yy. The test measures the plane-strain constants
@@ -348,81 +358,3 @@ def step_pulse_stress(*, x, t, c, v0, rho):
     """
     _, v = step_pulse_arrival(x=x, t=t, c=c, v0=v0)
     return -_arr(rho) * c * v
-
-
-# ---------------------------------------------------------------- convergence: observed order, Richardson, GCI
-
-
-def observed_order(*, h, error):
-    """Observed order of convergence: the least-squares slope of log(error) against log(h) over all the
-    given levels (error = C h^p). Needs at least two distinct h and positive errors, else ValueError."""
-    h, error = np.ravel(_arr(h)), np.ravel(_arr(error))
-    if h.size != error.size or h.size < 2 or np.unique(h).size < 2:
-        raise ValueError("need at least two levels with distinct h, one error per level")
-    if np.any(~(h > 0.0)) or np.any(~(error > 0.0)):
-        raise ValueError("h and error must be positive to take logarithms")
-    slope, _ = np.polyfit(np.log(h), np.log(error), 1)
-    return float(slope)
-
-
-def gci(*, h, values, Fs=1.25, tol=1e-12, max_iter=1000):
-    """Richardson extrapolation and the Grid Convergence Index from three grids.
-
-    Returns (p, extrapolated, gci_fine, asymptotic_ratio). h and values may come in any order; with
-    h1 < h2 < h3 (grid 1 the finest) and phi_k the values, following Celik, Ghia, Roache, Freitas, Coleman & Raad,
-    "Procedure for estimation and reporting of uncertainty due to discretization in CFD applications",
-    ASME J. Fluids Eng. 130 (2008) 078001, which puts Roache's GCI (Roache, Verification and Validation in
-    Computational Science and Engineering, Hermosa, 1998) into steps:
-
-        r21 = h2 / h1,  r32 = h3 / h2,  e21 = phi2 - phi1,  e32 = phi3 - phi2,  s = sign(e32 / e21),
-        p = |ln|e32 / e21| + q(p)| / ln r21,   q(p) = ln((r21^p - s) / (r32^p - s)),
-
-    solved by fixed-point iteration from q = 0 (when r21 = r32, q = 0 and p is explicit);
-
-        extrapolated = (r21^p phi1 - phi2) / (r21^p - 1),
-        gci_fine     = Fs |(phi1 - phi2) / phi1| / (r21^p - 1)        (relative, a fraction of phi1;
-                                                                     times |phi1| gives the absolute band).
-
-    asymptotic_ratio = GCI_23 / (r21^p GCI_12), Roache's check that the grids are in the asymptotic range
-    (about 1 when they are): GCI_12 = Fs |e21| / (r21^p - 1) and GCI_23 = Fs |e32| / (r32^p - 1), both in
-    absolute form, so that for phi = phi0 + C h^p the ratio is exactly 1 (the relative forms differ by the
-    factor phi1 / phi2 = 1 + O(h^p)). The ratio compares GCI_23 with r21^p GCI_12 since the error bands
-    scale as h2^p / h1^p.
-
-    s < 0 (oscillatory convergence) is computed as Celik et al. do but should be reported as such.
-    ValueError for fewer or more than three grids, repeated h, e21 = 0 or e32 = 0 (no order can be
-    observed), phi1 = 0 (no relative GCI), or an iteration that does not converge.
-    """
-    h, values = np.ravel(_arr(h)), np.ravel(_arr(values))
-    if h.size != 3 or values.size != 3:
-        raise ValueError("gci needs exactly three grids: three h and three values")
-    if np.any(~(h > 0.0)) or np.unique(h).size != 3:
-        raise ValueError("the three h must be positive and distinct")
-    order = np.argsort(h)
-    h1, h2, h3 = h[order]
-    phi1, phi2, phi3 = values[order]
-    r21, r32 = h2 / h1, h3 / h2
-    e21, e32 = phi2 - phi1, phi3 - phi2
-    if e21 == 0.0 or e32 == 0.0:
-        raise ValueError("two grids give the same value: no order can be observed")
-    if phi1 == 0.0:
-        raise ValueError("phi1 = 0: the relative GCI is undefined")
-    s = math.copysign(1.0, e32 / e21)
-    ln_ratio = math.log(abs(e32 / e21))
-    ln_r21 = math.log(r21)
-    p = abs(ln_ratio) / ln_r21
-    for _ in range(max_iter):
-        q = math.log((r21 ** p - s) / (r32 ** p - s))
-        p_new = abs(ln_ratio + q) / ln_r21
-        if abs(p_new - p) <= tol * max(1.0, abs(p_new)):
-            p = p_new
-            break
-        p = p_new
-    else:
-        raise ValueError(f"the fixed-point iteration for p did not converge in {max_iter} iterations")
-    f21, f32 = r21 ** p, r32 ** p
-    extrapolated = (f21 * phi1 - phi2) / (f21 - 1.0)
-    gci_fine = Fs * abs(e21 / phi1) / (f21 - 1.0)
-    gci_12 = Fs * abs(e21) / (f21 - 1.0)
-    gci_23 = Fs * abs(e32) / (f32 - 1.0)
-    return p, float(extrapolated), float(gci_fine), float(gci_23 / (f21 * gci_12))

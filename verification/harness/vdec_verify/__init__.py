@@ -15,13 +15,15 @@ the line "N passed, N failed". Exit status: 0 when every selected problem passes
 fails or is invalid (a problem.toml that cannot be run as written is reported as "invalid",
 never skipped), 2 on a usage error. `check` only loads and validates the problem files.
 
---level base runs the problems marked level = "base" (the test suite); --level full (the
-default) runs them all. --filter keeps the problems whose id contains one of the given
+--level base runs the problems marked level = "base" (the test suite), and of a problem's
+convergence study ([refinement]) the levels marked level = "base"; --level full (the default)
+runs them all. --filter keeps the problems whose id contains one of the given
 substrings or matches one of the given globs (case-insensitive).
 
 Modules: problem (load and validate problem.toml), extract (what a check reads from a run),
-norms (error norms, the pass rule and the independence guard), runner (runs the solver in
-parallel), report (the report files), provenance (software and harness information).
+norms (error norms, the pass rule and the independence guard), convergence (observed order,
+GCI and asymptotic ratio of a convergence study), runner (runs the solver in parallel), report
+(the report files), provenance (software and harness information).
 """
 
 __version__ = "1.0"
@@ -35,8 +37,12 @@ A check passes when e_abs <= atol + rtol * s, with
   Linf:        e_abs = max |f_h - f|                        s = max |f|
   upper_bound: passes when x_h <= x + atol + rtol |x|; e_abs = x_h - x (signed), s = |x|
   equal:       passes when x_h == x exactly (exit codes)
+  order:       a convergence study ([refinement]) passes when |p_obs - p| <= order_tolerance, p_obs the
+               least-squares slope of ln(error) against ln(h) over the asymptotic levels, p the
+               expected order; error = |p_obs - p|, tolerance = order_tolerance (both absolute)
 where x_h, f_h are vdec's values and x, f the closed-form reference. Reported error = e_abs / s
 and tolerance = (atol + rtol s) / s (when s = 0: error = e_abs, tolerance = atol).
-A problem passes when all its checks pass and every run exits with its expected code."""
+A problem passes when all its checks (and its convergence study, if any) pass and every run exits
+with its expected code."""
 
 __doc__ += "\nTHE PASS RULE\n\n" + PASS_RULE + "\n"

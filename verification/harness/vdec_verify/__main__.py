@@ -61,7 +61,7 @@ def command_run(args):
     if not entries:
         return _usage_error(f"no problems in {problems} match level {args.level} and filter {args.filter or '(none)'}")
     out = Path(args.out)
-    records = run_suite(entries, vdec.resolve(), out, args.jobs)
+    records = run_suite(entries, vdec.resolve(), out, args.jobs, level=args.level)
     write_reports(records, out, level=args.level)
     print_table(records)
     print(f"reports in {out}/ (index.html, report.pdf, summary.json, junit.xml)")
@@ -82,6 +82,11 @@ def command_check(args):
             print(f"invalid  {entry.id}\n  " + entry.error.replace("\n", "\n  "))
         else:
             runs = ", ".join(run.label for run in entry.problem.runs)
+            study = entry.problem.refinement
+            if study is not None:
+                base = len(study.levels_at("base"))
+                runs += (f"; refinement: {len(study.levels)} levels ({base} base), expected order "
+                         f"{study.expected_order:g} +- {study.order_tolerance:g}")
             print(f"valid    {entry.id} ({entry.problem.level}; {len(entry.problem.checks)} checks; runs: {runs})")
     bad = sum(entry.problem is None for entry in entries)
     print(f"{len(entries) - bad} valid, {bad} invalid")

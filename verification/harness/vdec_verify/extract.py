@@ -22,10 +22,13 @@ window = [t0, t1] keeps the samples with t0 <= t <= t1.
     run_meta       path                               a number at a dotted path in results["run"] or
                                                       results["energy"], e.g. "energy.largest_excess"
     exit_code      (none)                             the exit code of the run
+    field, field_mean, derived                        deformable-block fields: vdec_verify.fields
 """
 from dataclasses import dataclass
 
 import numpy as np
+
+from vdec_verify import fields
 
 
 class ExtractError(Exception):
@@ -38,6 +41,10 @@ class Series:
     y: np.ndarray
     x_label: str
     y_label: str
+    # A field's samples: the reference is called with these coordinates (x, y, r, theta) as
+    # keywords, and the L2 norm weights samples by `weights` (zone areas) when given.
+    coordinates: dict = None
+    weights: np.ndarray = None
 
 
 def read_history(results, name):
@@ -215,6 +222,9 @@ KINDS = {
     "log_decrement": Kind(log_decrement, ("history",), ("window", "level"), False),
     "run_meta": Kind(run_meta, ("path",), (), False),
     "exit_code": Kind(None, (), (), False),
+    "field": Kind(fields.field, ("of", "quantity"), fields.SELECTION_KEYS + ("abscissa",), True),
+    "field_mean": Kind(fields.field_mean, ("of", "quantity"), fields.SELECTION_KEYS, False),
+    "derived": Kind(None, ("function", "inputs"), ("params", "component"), False),
 }
 
 
@@ -227,4 +237,6 @@ def extract(table, results, exit_code):
         return float(exit_code)
     if results is None:
         raise ExtractError("the run wrote no results.json")
+    if kind == "derived":
+        return fields.derived(results, table, exit_code)
     return KINDS[kind].function(results, table)

@@ -27,10 +27,41 @@ Keys of problem.toml:
     atol = 0.0
     justification = "..."         required, non-empty: why the tolerance is fair
     variant = "frac-0.5"          optional: the variant whose run the check reads; default the plain run
+    refinement = true             optional, default false: the studied check of the [refinement] study
 
-Runs: each [[variant]] is run; the plain run (scene plus the problem's overrides) is run when
-there are no variants or when some check names no variant. Every run must exit with its
-expected code; a check of kind exit_code compares it with a constant.
+    [refinement]                  optional; a convergence study over zone size (vdec_verify.convergence)
+    expected_order = 2.0          required, > 0
+    order_tolerance = 0.3         required, > 0: the study passes when |observed - expected| <= this
+    justification = "..."         required: why this band (e.g. pre-asymptotic range, norm)
+    asymptotic_levels = 3         optional, default all levels: the finest N levels used for the fit and
+                                  the GCI (2 <= N <= number of levels; the GCI needs N >= 3). When fewer
+                                  levels run (base suite), all that ran are used.
+    [[refinement.level]]          at least 2, coarsest first
+    name = "n8"                   required, like a variant name; the run goes in runs/<ID>/<name>/
+    h = 0.125                     required, > 0, the representative zone size; strictly decreasing in the order given
+    overrides = ["block[0].zoning.nx=8"]   added after the problem's overrides
+    level = "base"                "base" or "full" (default "full"): a base suite (--level base) runs the
+                                  base levels, a full suite all levels
+
+Rules of a study (each broken rule is a ProblemError naming the key):
+  - exactly one [[check]] has refinement = true when there is a [refinement] table, and none
+    when there is not; the studied check names no variant and uses norm scalar, L2 or Linf
+    (its error must be >= 0 and shrink with h);
+  - level names are unique, and differ from the variant names and the run files;
+  - a problem at level "base" has at least two levels with level = "base", so that the test
+    suite still checks an order; a problem at level "full" has no level marked "base" (it runs
+    only in the full suite, where every level runs);
+  - every level run must exit 0 (the study needs its results).
+The studied check is evaluated on every level that runs in the suite. Its metric in
+summary.json is judged on the finest level that ran (quantity suffixed "(level NAME)"); the
+errors of all levels that ran feed the study, which adds the metric "observed order of
+QUANTITY" (norm "order": error |observed - expected|, tolerance order_tolerance) and the
+problem's "convergence" record. The problem fails when the study fails.
+
+Runs: each [[variant]] and each refinement level of the suite is run; the plain run (scene
+plus the problem's overrides) is run when some check other than the studied one names no
+variant. Every run must exit with its expected code; a check of kind exit_code compares it
+with a constant.
 """
 import importlib
 import inspect
@@ -52,11 +83,15 @@ DEFAULT_TIMEOUT_SECONDS = 600.0
 RUN_FILES = ("results.json", "command.txt", "stdout.txt", "stderr.txt")
 
 PROBLEM_KEYS = ("id", "title", "requirements", "scene", "level", "overrides", "expect_exit", "timeout_seconds",
-                "variant", "check")
+                "variant", "refinement", "check")
 # Tables planned for later work: named here so that using one says so rather than "unknown key".
-PLANNED_KEYS = {"refinement": "convergence studies ([refinement]) are not implemented yet"}
+PLANNED_KEYS = {}
 VARIANT_KEYS = ("name", "overrides", "expect_exit")
-CHECK_KEYS = ("quantity", "extract", "reference", "norm", "rtol", "atol", "justification", "variant")
+CHECK_KEYS = ("quantity", "extract", "reference", "norm", "rtol", "atol", "justification", "variant", "refinement")
+REFINEMENT_KEYS = ("expected_order", "order_tolerance", "justification", "asymptotic_levels", "level")
+LEVEL_KEYS = ("name", "h", "overrides", "level")
+# Norms whose error is >= 0 and shrinks with the zone size: the ones an order can be fitted to.
+STUDY_NORMS = ("scalar", "L2", "Linf")
 REFERENCE_KEYS = ("function", "params", "component", "constant")
 
 
@@ -95,6 +130,29 @@ class Check:
     atol: float
     justification: str
     variant: str         # "" for the plain run
+    refinement: bool = False   # the studied check of the problem's [refinement] study
+
+
+@dataclass(frozen=True)
+class Level:
+    """One [[refinement.level]]: its zone size, suite level and run."""
+    name: str
+    h: float
+    level: str           # "base" or "full"
+    run: Run
+
+
+@dataclass(frozen=True)
+class Refinement:
+    expected_order: float
+    order_tolerance: float
+    justification: str
+    asymptotic_levels: int   # None: all the levels that ran
+    levels: tuple            # of Level, coarsest first (h strictly decreasing)
+
+    def levels_at(self, suite_level):
+        """The levels a suite of this level runs: all in a full suite, the base ones in a base suite."""
+        return tuple(lv for lv in self.levels if suite_level == "full" or lv.level == "base")
 
 
 @dataclass
@@ -105,13 +163,26 @@ class Problem:
     path: Path           # the problem.toml
     scene: Path
     level: str
-    runs: list           # of Run, plain run first, then variants in file order
+    runs: list           # of Run: plain run first, then variants in file order, then refinement levels
     checks: list
     timeout_seconds: float
+    refinement: Refinement = None
 
     @property
     def folder(self):
         return self.path.parent
+
+    @property
+    def studied_check(self):
+        return next((c for c in self.checks if c.refinement), None)
+
+    def runs_at(self, suite_level):
+        """The runs a suite of the given level makes: every run, less the refinement levels
+        marked "full" in a base suite."""
+        if self.refinement is None:
+            return list(self.runs)
+        skipped = {lv.name for lv in self.refinement.levels if lv not in self.refinement.levels_at(suite_level)}
+        return [run for run in self.runs if run.name not in skipped]
 
 
 def find_reference_function(name):
@@ -190,7 +261,7 @@ def _extract_table(errors, table, where):
     for key in kind.required:
         if key not in table:
             errors.add(f"{where}.{key}", f"is required for kind '{kind_name}'")
-    for key in ("history", "x", "y"):
+    for key in ("history",) + (("x", "y") if kind_name == "curve" else ()):
         if key in table and not _is_text(table[key]):
             errors.add(f"{where}.{key}", "must name a history")
     for key in ("t", "t0", "level"):
@@ -200,6 +271,26 @@ def _extract_table(errors, table, where):
         w = table["window"]
         if not (isinstance(w, list) and len(w) == 2 and all(_is_number(v) for v in w) and w[0] < w[1]):
             errors.add(f"{where}.window", f"{w!r} is not [t_start, t_end] with t_start < t_end")
+    if kind_name in ("field", "field_mean"):
+        if table.get("of") not in ("zones", "gridpoints"):
+            errors.add(f"{where}.of", f"{table.get('of')!r} is not \"zones\" or \"gridpoints\"")
+        for key in ("x", "y", "r", "angle", "centre"):
+            if key in table and not (isinstance(table[key], list) and len(table[key]) == 2
+                                     and all(_is_number(v) for v in table[key])):
+                errors.add(f"{where}.{key}", f"{table[key]!r} is not a pair of numbers")
+    if kind_name == "derived":
+        inputs = table.get("inputs")
+        if not isinstance(inputs, dict) or not inputs:
+            errors.add(f"{where}.inputs", "must be a table of named extract tables")
+        else:
+            for name, sub in inputs.items():
+                inner = _extract_table(errors, sub, f"{where}.inputs.{name}")
+                if inner is not None and inner.series:
+                    errors.add(f"{where}.inputs.{name}", "must be a scalar extract")
+        try:
+            find_reference_function(table.get("function", ""))
+        except LookupError as e:
+            errors.add(f"{where}.function", str(e))
     if "path" in table:
         path = table["path"]
         if not isinstance(path, str) or path.split(".")[0] not in ("run", "energy") or "." not in path:
@@ -227,8 +318,9 @@ def _reference(errors, table, where, series):
     if not isinstance(params, dict):
         errors.add(f"{where}.params", "must be a table of keyword arguments")
         params = {}
-    if component is not None and (isinstance(component, bool) or not isinstance(component, int) or component < 0):
-        errors.add(f"{where}.component", f"{component!r} is not a component index (0, 1, ...)")
+    if component is not None and not isinstance(component, str) and (
+            isinstance(component, bool) or not isinstance(component, int) or component < 0):
+        errors.add(f"{where}.component", f"{component!r} is not a component index (0, 1, ...) or a field name")
         component = None
     if not isinstance(name, str):
         errors.add(f"{where}.function", f"{name!r} is not a name module.function")
@@ -245,12 +337,18 @@ def _reference(errors, table, where, series):
         signature = None
     if signature is not None:
         try:
-            if series:
+            if series == "field":
+                # A field passes whichever coordinates the function takes, as keywords.
+                coordinates = {c: None for c in ("x", "y", "r", "theta") if c in signature.parameters}
+                if not coordinates:
+                    raise TypeError("a field reference takes coordinates x, y, r or theta")
+                signature.bind(**coordinates, **params)
+            elif series:
                 signature.bind(None, **params)
             else:
                 signature.bind(**params)
         except TypeError as e:
-            form = "f(x, **params)" if series else "f(**params)"
+            form = {"field": "f(x=..., y=..., r=..., theta=..., **params)"}.get(series, "f(x, **params)" if series else "f(**params)")
             errors.add(f"{where}.params", f"do not fit {ANALYTIC_PACKAGE}.{name}{signature} called as {form}: {e}")
     return Reference(name, dict(params), component, None)
 
@@ -270,6 +368,83 @@ def _tolerance(errors, check, where, norm):
     elif "rtol" not in check and "atol" not in check:
         errors.add(f"{where}.rtol", "the check has no tolerance: give rtol and/or atol")
     return values.get("rtol", 0.0), values.get("atol", 0.0)
+
+
+def _positive(errors, table, key, where):
+    """A required finite number > 0, or None (with the error recorded)."""
+    if key not in table:
+        errors.add(f"{where}{key}", "is required")
+        return None
+    value = table[key]
+    if not _is_number(value) or not math.isfinite(value) or not value > 0:
+        errors.add(f"{where}{key}", f"{value!r} is not a finite number > 0")
+        return None
+    return float(value)
+
+
+def _refinement(errors, table, overrides, variant_names, problem_level):
+    """The [refinement] table as a Refinement, or None when it is unusable (errors recorded)."""
+    if not isinstance(table, dict):
+        errors.add("refinement", "must be a table [refinement] with [[refinement.level]] tables")
+        return None
+    _check_unknown(errors, table, REFINEMENT_KEYS, "refinement.")
+    expected = _positive(errors, table, "expected_order", "refinement.")
+    band = _positive(errors, table, "order_tolerance", "refinement.")
+    justification = table.get("justification", "")
+    if "justification" not in table:
+        errors.add("refinement.justification", "is required: why this band is fair")
+    elif not _is_text(justification):
+        errors.add("refinement.justification", "must say why the order band is fair (non-empty)")
+    raw = table.get("level", [])
+    if not isinstance(raw, list) or not all(isinstance(lv, dict) for lv in raw):
+        errors.add("refinement.level", "must be an array of tables [[refinement.level]]")
+        raw = []
+    if len(raw) < 2:
+        errors.add("refinement.level", f"a study needs at least two [[refinement.level]] tables (found {len(raw)})")
+    asymptotic = table.get("asymptotic_levels")
+    if asymptotic is not None and (isinstance(asymptotic, bool) or not isinstance(asymptotic, int)
+                                   or not 2 <= asymptotic <= max(len(raw), 2)):
+        errors.add("refinement.asymptotic_levels",
+                   f"{asymptotic!r} is not a number of levels from 2 to the {len(raw)} levels given")
+        asymptotic = None
+    levels, previous_h = [], None
+    for i, lv in enumerate(raw):
+        where = f"refinement.level[{i}]"
+        _check_unknown(errors, lv, LEVEL_KEYS, f"{where}.")
+        name = lv.get("name")
+        if not isinstance(name, str) or not VARIANT_NAME.match(name):
+            errors.add(f"{where}.name", f"{name!r} is required: letters, digits, '.', '_' or '-' (it names a folder)")
+            name = None
+        elif name in RUN_FILES:
+            errors.add(f"{where}.name", f"'{name}' is the name of a file in the plain run's folder")
+        elif name in variant_names:
+            errors.add(f"{where}.name", f"'{name}' is used by a [[variant]] (the runs share runs/<ID>/<name>/)")
+        elif any(other.name == name for other in levels):
+            errors.add(f"{where}.name", f"'{name}' is used by an earlier level")
+        h = _positive(errors, lv, "h", f"{where}.")
+        if h is not None:
+            if previous_h is not None and not h < previous_h:
+                errors.add(f"{where}.h", f"{h:g} is not smaller than the previous level's h {previous_h:g} "
+                                         "(levels go from coarse to fine, h strictly decreasing)")
+            previous_h = h
+        extra = _overrides(errors, lv.get("overrides", []), f"{where}.overrides")
+        suite = lv.get("level", "full")
+        if suite not in LEVELS:
+            errors.add(f"{where}.level", f"{suite!r} must be 'base' or 'full'")
+        elif suite == "base" and problem_level == "full":
+            errors.add(f"{where}.level", "'base' has no effect: the problem's level is 'full', so it runs only in "
+                                         "the full suite, where every level runs")
+        if name is not None and h is not None:
+            levels.append(Level(name, h, suite, Run(name, overrides + extra, 0)))
+    if problem_level == "base" and len(raw) >= 2:
+        base = sum(lv.get("level", "full") == "base" for lv in raw)
+        if base < 2:
+            errors.add("refinement.level", f"the problem's level is 'base' but {base} of its levels are: give at "
+                                           "least two levels level = \"base\" so that the test suite still checks "
+                                           "an order (or make the problem level = \"full\")")
+    if expected is None or band is None:
+        return None
+    return Refinement(expected, band, justification, asymptotic, tuple(levels))
 
 
 def load_problem(path):
@@ -342,6 +517,10 @@ def load_problem(path):
         code = _exit_code(errors, v.get("expect_exit", expect_exit), f"{where}.expect_exit")
         variants.append(Run(name, overrides + extra, code))
 
+    refinement = None
+    if "refinement" in data:
+        refinement = _refinement(errors, data["refinement"], overrides, {v.name for v in variants}, level)
+
     checks = []
     raw_checks = data.get("check", [])
     if not isinstance(raw_checks, list) or ("check" in data and not raw_checks):
@@ -372,16 +551,39 @@ def load_problem(path):
         rtol, atol = _tolerance(errors, c, where, norm)
         reference = None
         if "reference" in c:
-            reference = _reference(errors, c["reference"], f"{where}.reference", bool(kind and kind.series))
+            series = "field" if kind and c["extract"].get("kind") == "field" else bool(kind and kind.series)
+            reference = _reference(errors, c["reference"], f"{where}.reference", series)
         variant = c.get("variant", "")
         if "variant" in c and not any(v.name == variant for v in variants):
             errors.add(f"{where}.variant", f"no [[variant]] named {variant!r}")
+        studied = c.get("refinement", False)
+        if not isinstance(studied, bool):
+            errors.add(f"{where}.refinement", f"{studied!r} is not true or false")
+            studied = False
+        if studied:
+            if "variant" in c:
+                errors.add(f"{where}.variant", "a check with refinement = true reads every refinement level's run; "
+                                               "it names no variant")
+            if norm in NORMS and norm not in STUDY_NORMS:
+                errors.add(f"{where}.norm", f"a check with refinement = true needs norm {', '.join(STUDY_NORMS)} "
+                                            f"(an error >= 0 that shrinks with h), not '{norm}'")
+            if "refinement" not in data:
+                errors.add(f"{where}.refinement", "there is no [refinement] table with levels to study")
+            earlier = next((other for other in checks if other.refinement), None)
+            if earlier is not None:
+                errors.add(f"{where}.refinement", f"only one check can be studied over the refinement levels "
+                                                  f"(check[{earlier.index}] already is)")
         checks.append(Check(i, c.get("quantity", ""), c.get("extract"), reference, norm, rtol, atol,
-                            c.get("justification", ""), variant))
+                            c.get("justification", ""), variant, studied))
+    if "refinement" in data and raw_checks and not any(c.refinement for c in checks):
+        errors.add("refinement", "no [[check]] has refinement = true: the study has nothing to study")
     errors.raise_any()
 
     runs = list(variants)
-    if not variants or any(c.variant == "" for c in checks):
+    if any(c.variant == "" and not c.refinement for c in checks):
         runs.insert(0, Run("", overrides, expect_exit))
-    return Problem(problem_id, title, list(requirements), path, scene, level, runs, checks, float(timeout))
+    if refinement is not None:
+        runs += [lv.run for lv in refinement.levels]
+    return Problem(problem_id, title, list(requirements), path, scene, level, runs, checks, float(timeout),
+                   refinement)
 

@@ -1,5 +1,10 @@
 """Report files: summary.json (schema vdec.verification/1), junit.xml, index.html (with one PNG
-plot per problem beside it) and report.pdf."""
+plot per problem beside it) and report.pdf.
+
+A problem with a convergence study keeps its "convergence" record in summary.json (an optional
+key of the same schema) and gets two more panels in its plot: error against zone size h on
+log-log axes with a line of the expected slope, and error against wall seconds (work-precision).
+"""
 import html
 import json
 import math
@@ -9,6 +14,8 @@ from pathlib import Path
 
 from matplotlib.backends.backend_pdf import PdfPages
 from matplotlib.figure import Figure  # Figure objects, not pyplot: no global state, no display needed
+from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
+import numpy as np
 
 from vdec_verify import PASS_RULE
 from vdec_verify.provenance import harness_info, software_of_runs
@@ -41,6 +48,8 @@ def public_record(record):
     """The record as summary.json keeps it: plot data stays out (it goes to the PNG files)."""
     kept = {key: record[key] for key in PROBLEM_FIELDS}
     kept["metrics"] = [{k: v for k, v in m.items() if k != "plot"} for m in record["metrics"]]
+    if record.get("convergence") is not None:   # optional: only problems with a [refinement] study
+        kept["convergence"] = record["convergence"]
     return _finite_or_none(kept)
 
 
@@ -117,16 +126,98 @@ def _draw_metric(ax, metric):
     ax.legend(fontsize=6, loc="best")
 
 
-def _draw_metrics(fig, metrics, columns, top, bottom):
-    rows = math.ceil(len(metrics) / columns)
+def _study_points(study, abscissa):
+    """(x, error, names) of the levels whose error and abscissa can go on log axes."""
+    points = [(x, e, name) for x, e, name in zip(study[abscissa], study["error"], study["levels"])
+              if x is not None and e is not None and math.isfinite(x) and math.isfinite(e) and x > 0 and e > 0]
+    return [p[0] for p in points], [p[1] for p in points], [p[2] for p in points]
+
+
+def _study_axes(ax, study, x, errors, names, colour, xlabel, title):
+    ax.set_title(title, fontsize=7, color="black" if study["pass"] else "tab:red")
+    ax.set_xlabel(xlabel, fontsize=7)
+    ax.set_ylabel(f"error ({study.get('norm', '')})", fontsize=7)
+    ax.tick_params(labelsize=6)
+    if not errors:
+        ax.text(0.5, 0.5, "no positive finite errors to plot", ha="center", va="center", transform=ax.transAxes,
+                fontsize=7, color="tab:red")
+        return False
+    ax.loglog(x, errors, marker="o", color=colour, lw=0.8, label="vdec")
+    for xi, ei, name in zip(x, errors, names):
+        ax.annotate(name, (xi, ei), textcoords="offset points", xytext=(4, 4), fontsize=6)
+    return True
+
+
+def _data_ticks(axis, values, at_most=6):
+    """Tick labels at the data (at most `at_most` of them, ends kept): a study spans a decade or two,
+    where log axes label few decades and their minor labels collide."""
+    values = sorted(set(values))
+    if len(values) > at_most:
+        step = math.ceil((len(values) - 1) / (at_most - 1))
+        values = values[::step] + ([values[-1]] if (len(values) - 1) % step else [])
+    axis.set_major_locator(FixedLocator(values))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.3g}"))
+    axis.set_minor_formatter(NullFormatter())
+
+
+def _draw_order(ax, study):
+    """Error against zone size on log-log axes, with the expected slope through the finest level and
+    the least-squares fit over the asymptotic levels."""
+    colour = "tab:green" if study["pass"] else "tab:red"
+    observed = study["observed_order"]
+    head = f"{'PASS' if study['pass'] else 'FAIL'}: observed order " + \
+        ("(none)" if observed is None else f"{observed:.3f}") + \
+        f", expected {study['expected_order']:g} +- {study['order_tolerance']:g}"
+    gci = "" if study["gci"] is None else f"; GCI {study['gci']:.2e}, ratio {study['asymptotic_ratio']:.3f}"
+    title = "\n".join(textwrap.wrap(f"convergence of {study.get('quantity', '')}", 52)[:2] + [head + gci])
+    h, errors, names = _study_points(study, "h")
+    if _study_axes(ax, study, h, errors, names, colour, "zone size h", title):
+        span = np.array([min(h), max(h)])
+        expected = study["expected_order"]
+        ax.loglog(span, errors[-1] * (span / h[-1]) ** expected, color="black", ls="--", lw=1, alpha=0.6,
+                  label=f"slope {expected:g} (expected)")
+        fit = [(hi, ei) for hi, ei, n in zip(h, errors, names) if n in study.get("fit_levels", [])]
+        if observed is not None and len(fit) >= 2:
+            fh = np.array([f[0] for f in fit])
+            constant = math.exp(np.mean(np.log([f[1] for f in fit])) - observed * np.mean(np.log(fh)))
+            fh = np.array([fh.min(), fh.max()])
+            ax.loglog(fh, constant * fh ** observed, color=colour, ls=":", lw=1.5, label=f"fit, slope {observed:.2f}")
+        _data_ticks(ax.xaxis, h)
+        _data_ticks(ax.yaxis, errors)
+        ax.legend(fontsize=6, loc="best")
+
+
+def _draw_work(ax, study):
+    """Work-precision: error against the wall seconds of each level's run."""
+    colour = "tab:green" if study["pass"] else "tab:red"
+    title = "\n".join(textwrap.wrap(f"work-precision of {study.get('quantity', '')}", 52)[:2]
+                      + ["error against wall time per level"])
+    seconds, errors, names = _study_points(study, "wall_seconds")
+    if _study_axes(ax, study, seconds, errors, names, colour, "wall seconds of the run", title):
+        _data_ticks(ax.xaxis, [min(seconds), max(seconds)])
+        _data_ticks(ax.yaxis, errors)
+        ax.legend(fontsize=6, loc="best")
+
+
+def _panels(record):
+    """What the problem's figure shows: one panel per evaluated check, then the study's two."""
+    panels = [(_draw_metric, m) for m in _plotted(record)]
+    if record.get("convergence") is not None:
+        panels += [(_draw_order, record["convergence"]), (_draw_work, record["convergence"])]
+    return panels
+
+
+def _draw_metrics(fig, panels, columns, top, bottom):
+    rows = math.ceil(len(panels) / columns)
     grid = fig.add_gridspec(rows, columns, top=top, bottom=bottom, left=0.08, right=0.97, hspace=0.75, wspace=0.35)
-    for i, metric in enumerate(metrics):
-        _draw_metric(fig.add_subplot(grid[i // columns, i % columns]), metric)
+    for i, (draw, data) in enumerate(panels):
+        draw(fig.add_subplot(grid[i // columns, i % columns]), data)
 
 
 def write_plot(record, out):
-    """OUT/<ID>.png with one panel per evaluated check; None when nothing could be evaluated."""
-    metrics = _plotted(record)
+    """OUT/<ID>.png with one panel per evaluated check (and two per convergence study); None when
+    nothing could be evaluated."""
+    metrics = _panels(record)
     if not metrics:
         return None
     columns = min(len(metrics), 3)
@@ -163,6 +254,47 @@ def _provenance_lines(software, harness, disagreements):
     return lines
 
 
+def _order(value):
+    return "" if value is None else f"{value:.3f}"
+
+
+def _study_rows(records):
+    """Rows of the HTML table of convergence studies."""
+    e = html.escape
+    rows = []
+    for r in records:
+        study = r.get("convergence")
+        if study is None:
+            continue
+        fit = set(study.get("fit_levels", study["levels"]))
+        levels = "<br>".join(
+            f"{'<b>' if name in fit else ''}{e(name)}{'</b>' if name in fit else ''}: h {h:.4g}, error "
+            f"{_ratio(error) or 'none'}, {seconds:.3g} s"
+            for name, h, error, seconds in zip(study["levels"], study["h"], study["error"], study["wall_seconds"]))
+        result = "PASS" if study["pass"] else "FAIL"
+        rows.append(f'<tr><td><a href="#{e(r["id"])}">{e(r["id"])}</a></td><td>{e(study.get("quantity", ""))}'
+                    f'<br><small class="note">{e(study["message"])}</small></td><td class="num">{levels}</td>'
+                    f'<td class="num">{_order(study["observed_order"])}</td>'
+                    f'<td class="num">{study["expected_order"]:g}</td>'
+                    f'<td class="num">+- {study["order_tolerance"]:g}</td><td class="num">{_ratio(study["gci"])}</td>'
+                    f'<td class="num">{_order(study["asymptotic_ratio"])}</td>'
+                    f'<td class="{result.lower()}">{result}</td></tr>')
+    return rows
+
+
+def _study_lines(study, width):
+    """The convergence study of a problem as text lines for the PDF."""
+    lines = [f"{'PASS' if study['pass'] else 'FAIL'}  convergence study of {study.get('quantity', '')}"[:width],
+             f"      observed order {_order(study['observed_order']) or 'none'}, expected {study['expected_order']:g} "
+             f"+- {study['order_tolerance']:g}, GCI {_ratio(study['gci']) or 'none'}, asymptotic ratio "
+             f"{_order(study['asymptotic_ratio']) or 'none'}"]
+    for name, h, error, seconds in zip(study["levels"], study["h"], study["error"], study["wall_seconds"]):
+        used = "*" if name in study.get("fit_levels", []) else " "
+        lines.append(f"    {used} {name:16s} h {h:<12.6g} error {_ratio(error) or 'none':>10s}  {seconds:8.3f} s")
+    lines += textwrap.wrap(study["message"], width, initial_indent="      ", subsequent_indent="      ")
+    return lines
+
+
 def write_html(records, out, harness, software, disagreements, images):
     passed, failed = counts(records)
     e = html.escape
@@ -196,6 +328,17 @@ def write_html(records, out, harness, software, disagreements, images):
         if images.get(r["id"]):
             rows.append(f'<tr><td colspan="9" class="plot"><img src="{e(images[r["id"]])}" '
                         f'alt="{e(r["id"])}: vdec against the closed form"></td></tr>')
+    studies = _study_rows(records)
+    study_table = "" if not studies else f"""<h2>Convergence studies</h2>
+<table><tr><th>problem</th><th>studied quantity</th><th>levels (bold: fitted)</th><th>observed order</th>
+<th>expected order</th><th>band</th><th>GCI (fine)</th><th>asymptotic ratio</th><th>result</th></tr>
+{chr(10).join(studies)}
+</table>
+<p class="note">Observed order: least-squares slope of ln(error) against ln(h) over the fitted levels; it passes when
+|observed - expected| is within the band. GCI: Roache's Grid Convergence Index of the finest level from the three finest
+fitted levels (Celik et al. 2008, Fs = 1.25), a fraction of the finest value; asymptotic ratio GCI_23 / (r21^p GCI_12),
+about 1 in the asymptotic range. The plots show error against h (with the expected slope) and against wall time.</p>
+"""
     provenance = "<br>".join(e(line) for line in _provenance_lines(software, harness, disagreements))
     page = f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>vdec verification report</title>
@@ -225,7 +368,7 @@ pre {{ background: #f4f4f4; padding: 0.6em; }}
 </table>
 <p class="note">For L2 and Linf checks, "numerical" and "analytic" are the norms of the two series (s);
 error and tolerance are relative to s as the pass rule states.</p>
-</body></html>
+{study_table}</body></html>
 """
     path = out / "index.html"
     path.write_text(page, encoding="utf-8")
@@ -284,7 +427,7 @@ def write_pdf(records, out, harness, software, disagreements):
             fig = Figure(figsize=A4_PORTRAIT)
             fig.suptitle(f"{r['id']} ({r['status'].upper()})\n" + "\n".join(textwrap.wrap(r["title"], 90)),
                          fontsize=10)
-            metrics = _plotted(r)
+            metrics = _panels(r)
             text_top = 0.90
             if metrics:
                 columns = min(len(metrics), 2)
@@ -299,6 +442,8 @@ def write_pdf(records, out, harness, software, disagreements):
             lines.append("")
             for m in r["metrics"]:
                 lines += _metric_lines(m, 110)
+            if r.get("convergence") is not None:
+                lines += [""] + _study_lines(r["convergence"], 110)
             fig.text(0.05, text_top, "\n".join(lines[:70]), va="top", ha="left", family="monospace", fontsize=6.5)
             pdf.savefig(fig)
         info = pdf.infodict()

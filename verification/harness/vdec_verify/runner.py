@@ -1,13 +1,16 @@
 """Runs the selected problems with vdec (runs in parallel) and judges their checks.
 
-Each run is `vdec run SCENE --out OUT/runs/<ID>[/<variant>] [--set key=value ...]`; the run
-folder keeps results.json, command.txt, stdout.txt and stderr.txt. All runs of all problems
-share one pool of --jobs workers; the records come back sorted by problem id.
+Each run is `vdec run SCENE --out OUT/runs/<ID>[/<variant or level>] [--set key=value ...]`;
+the run folder keeps results.json, command.txt, stdout.txt and stderr.txt. All runs of all
+problems share one pool of --jobs workers; the records come back sorted by problem id. A
+problem with a [refinement] study runs the levels of the suite's level (problem.runs_at) and
+gets a "convergence" record (vdec_verify.convergence).
 """
 import fnmatch
 import hashlib
 import json
 import math
+import os
 import shlex
 import subprocess
 import sys
@@ -17,12 +20,17 @@ from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
 from pathlib import Path
 
+from vdec_verify.convergence import convergence_study
 from vdec_verify.extract import ExtractError, Series, extract
 from vdec_verify.norms import ReferenceProblem, compare, evaluate_reference
 from vdec_verify.problem import RUN_FILES, ProblemError, find_reference_function, load_problem
 from vdec_verify.provenance import software_of
 
 RESULTS_SCHEMA = "vdec.results/1"
+# The suite runs problems side by side on the cores, so each run keeps to one thread (unless the
+# caller says otherwise): threads of two runs contending for two cores would only slow both, and
+# one thread per run keeps the wall times of a study comparable.
+RUN_ENVIRONMENT = {**os.environ, "OMP_NUM_THREADS": os.environ.get("OMP_NUM_THREADS", "1")}
 EXIT_MEANINGS = {0: "ok", 1: "internal error", 2: "command line error", 3: "scene input error", 4: "geometry error",
                  5: "numerical instability", 6: "contact overlap beyond half the rounding length",
                  7: "output error"}
@@ -147,7 +155,7 @@ def execute(problem, run, vdec, out):
         (folder / "command.txt").write_text(shlex.join(command) + "\n")
         try:
             completed = subprocess.run(command, capture_output=True, text=True, timeout=problem.timeout_seconds,
-                                       stdin=subprocess.DEVNULL)
+                                       stdin=subprocess.DEVNULL, env=RUN_ENVIRONMENT)
             stdout, stderr = completed.stdout, completed.stderr
             outcome.exit_code = completed.returncode
         except subprocess.TimeoutExpired as e:
@@ -222,8 +230,54 @@ def judge_check(check, outcome):
     return metric
 
 
-def judge(entry, outcomes):
-    """The record of one problem (see report.write_summary for the fields kept)."""
+def order_metric(check, refinement, study):
+    """The study's metric: observed against expected order, an absolute band (norm "order")."""
+    observed = study["observed_order"]
+    error = None if observed is None else abs(observed - refinement.expected_order)
+    return {"quantity": f"observed order of {check.quantity}", "variant": None, "extract": check.extract["kind"],
+            "norm": "order", "rtol": 0.0, "atol": refinement.order_tolerance, "error": error,
+            "tolerance": refinement.order_tolerance, "pass": study["pass"], "numerical": observed,
+            "reference": refinement.expected_order, "justification": refinement.justification,
+            "message": study["message"]}
+
+
+def judge_study(problem, check, outcomes, level):
+    """(metrics, convergence, invalid messages) of the studied check over the levels of the suite.
+
+    The check is evaluated on every level that ran; its metric is that of the finest level (the
+    quantity suffixed with the level's name); the errors of all levels feed the study."""
+    levels = problem.refinement.levels_at(level)
+    per_level, invalid = [], []
+    for lv in levels:
+        try:
+            metric = judge_check(check, outcomes[lv.name])
+        except (ReferenceProblem, LookupError) as e:
+            metric = unevaluated_metric(check, f"invalid reference: {e}")
+            invalid.append(f"check {check.index + 1} (level {lv.name}): {e}")
+        except Exception as e:  # a harness fault on odd data: report it against this check, not the suite
+            metric = unevaluated_metric(check, f"harness error: {type(e).__name__}: {e}")
+        per_level.append(metric)
+    runs = [outcomes[lv.name] for lv in levels]
+    study = convergence_study(
+        names=[lv.name for lv in levels], h=[lv.h for lv in levels], error=[m["error"] for m in per_level],
+        numerical=[m["numerical"] for m in per_level], wall_seconds=[o.wall_seconds for o in runs],
+        cycles=[((o.results or {}).get("run") or {}).get("cycles") for o in runs],
+        expected_order=problem.refinement.expected_order, order_tolerance=problem.refinement.order_tolerance,
+        asymptotic_levels=problem.refinement.asymptotic_levels,
+        why=[m["message"] if m["error"] is None else "" for m in per_level])
+    study = dict(study, quantity=check.quantity, norm=check.norm)
+    finest = dict(per_level[-1], quantity=f"{check.quantity} (level {levels[-1].name})", level=levels[-1].name)
+    study_metric = order_metric(check, problem.refinement, study)
+    if invalid:
+        study_metric = dict(study_metric, error=None, numerical=None, message="invalid reference: " + invalid[0],
+                            **{"pass": False})
+        study["pass"] = False
+    return [finest, study_metric], study, invalid
+
+
+def judge(entry, outcomes, level="full"):
+    """The record of one problem (see report.write_summary for the fields kept); level is the
+    suite's level ("base" or "full"), which decides the refinement levels that ran."""
     record = {"id": entry.id, "title": entry.title, "requirements": list(entry.requirements), "level": None,
               "status": "invalid", "metrics": [], "runs": [], "wall_seconds": 0.0, "cycles": 0, "scene_sha256": "",
               "exit_code": None, "message": entry.error, "messages": entry.error.splitlines()}
@@ -231,7 +285,7 @@ def judge(entry, outcomes):
     if problem is None:
         return record
     record.update(title=problem.title, requirements=problem.requirements, level=problem.level)
-    ordered = [outcomes[run.name] for run in problem.runs]
+    ordered = [outcomes[run.name] for run in problem.runs_at(level)]
     record["runs"] = [o.summary() for o in ordered]
     record["wall_seconds"] = sum(o.wall_seconds for o in ordered)
     record["cycles"] = sum(int(((o.results or {}).get("run") or {}).get("cycles") or 0) for o in ordered)
@@ -242,6 +296,12 @@ def judge(entry, outcomes):
     messages = [f"run {o.variant}: {o.failure}" if o.variant else o.failure for o in ordered if o.failure]
     invalid = False
     for check in problem.checks:
+        if check.refinement:
+            metrics, record["convergence"], problems = judge_study(problem, check, outcomes, level)
+            record["metrics"] += metrics
+            invalid |= bool(problems)
+            messages += problems
+            continue
         try:
             metric = judge_check(check, outcomes[check.variant])
         except (ReferenceProblem, LookupError) as e:
@@ -261,7 +321,10 @@ def judge(entry, outcomes):
     for m in failing:
         if m["message"].startswith("invalid reference"):
             continue
-        why = m["message"] if m["error"] is None else f"error {m['error']:.3g} > tolerance {m['tolerance']:.3g}"
+        if m["error"] is None or m["norm"] == "order":   # a study's message states its numbers
+            why = m["message"]
+        else:
+            why = f"error {m['error']:.3g} > tolerance {m['tolerance']:.3g}"
         messages.append(f"failed: {m['quantity']} ({why})")
     record["messages"] = messages
     record["message"] = "; ".join(messages)
@@ -272,11 +335,12 @@ def _progress(text):
     print(text, file=sys.stderr, flush=True)
 
 
-def run_suite(entries, vdec, out, jobs=2, progress=_progress):
-    """Runs every run of every valid entry (jobs at a time) and returns the records sorted by id."""
+def run_suite(entries, vdec, out, jobs=2, progress=_progress, level="full"):
+    """Runs every run of every valid entry (jobs at a time) and returns the records sorted by id.
+    level: the suite's level; a base suite runs only the base refinement levels."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    work = [(entry, run) for entry in entries if entry.problem is not None for run in entry.problem.runs]
+    work = [(entry, run) for entry in entries if entry.problem is not None for run in entry.problem.runs_at(level)]
     outcomes = {}
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
         futures = {pool.submit(execute, entry.problem, run, vdec, out): (entry.id, run.name) for entry, run in work}
@@ -291,6 +355,6 @@ def run_suite(entries, vdec, out, jobs=2, progress=_progress):
     records = []
     for entry in sorted(entries, key=lambda e: e.id):
         mine = {name: outcome for (problem_id, name), outcome in outcomes.items() if problem_id == entry.id}
-        records.append(judge(entry, mine))
+        records.append(judge(entry, mine, level))
     return records
 

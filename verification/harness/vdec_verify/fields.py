@@ -1,0 +1,129 @@
+"""Extractors for deformable blocks: fields over zones or gridpoints, their means, and
+quantities derived from extracted values by an inversion formula.
+
+results.json holds, for deformable blocks, columns "zones" {block, x0, y0, area, sxx, syy,
+sxy, szz} (positions are the initial zone centroids) and "gridpoints" {block, x0, y0,
+displacement_x, displacement_y, ...} (initial positions).
+
+    kind        keys (optional in brackets)                           returns
+    field       of, quantity [block] [centre] [x] [y] [r] [angle]      Series over the selected zones or
+                [abscissa]                                             gridpoints; the reference is called
+                                                                       with their coordinates as keywords
+                                                                       (x, y, r, theta: whichever it takes)
+    field_mean  of, quantity [block] [centre] [x] [y] [r] [angle]      mean (area-weighted for zones)
+    derived     function, inputs [params] [component]                 function(**inputs, **params) of the
+                                                                       analytic package, inputs being other
+                                                                       extract tables: a quantity the run
+                                                                       measures only through a formula (E
+                                                                       and nu from strains)
+
+of = "zones" (quantities sxx, syy, sxy, szz and, about `centre`, srr, stt, srt) or "gridpoints"
+(ux, uy and, about `centre`, ur, ut). Selection ranges on the initial position: x, y, r (about
+centre) = [low, high]; angle = [low, high] in degrees about centre. The abscissa (for plots and
+the trapezoid weights of a gridpoint L2 norm) is r when a polar quantity or range is used,
+else x. Zones weight the L2 norm by their areas.
+"""
+import math
+
+import numpy as np
+
+ZONE_QUANTITIES = ("sxx", "syy", "sxy", "szz", "srr", "stt", "srt")
+GRIDPOINT_QUANTITIES = ("ux", "uy", "ur", "ut")
+POLAR = ("srr", "stt", "srt", "ur", "ut")
+SELECTION_KEYS = ("block", "centre", "x", "y", "r", "angle")
+
+
+def _columns(results, of):
+    from vdec_verify.extract import ExtractError
+    table = results.get(of)
+    if not isinstance(table, dict):
+        raise ExtractError(f"the results have no '{of}' (a scene without deformable blocks has none)")
+    return table
+
+
+def _selected(results, table):
+    """(columns, mask, x, y, r, theta) of the selected zones or gridpoints."""
+    from vdec_verify.extract import ExtractError
+    of = table["of"]
+    columns = _columns(results, of)
+    x = np.asarray(columns["x0"], dtype=float)
+    y = np.asarray(columns["y0"], dtype=float)
+    centre = table.get("centre", [0.0, 0.0])
+    dx, dy = x - float(centre[0]), y - float(centre[1])
+    r, theta = np.hypot(dx, dy), np.arctan2(dy, dx)
+    mask = np.ones(x.shape, dtype=bool)
+    slack = 1e-9 * max(1.0, float(np.max(np.abs(np.concatenate([x, y])))) if x.size else 1.0)
+    for key, values in (("x", x), ("y", y), ("r", r)):
+        if key in table:
+            low, high = table[key]
+            mask &= (values >= low - slack) & (values <= high + slack)
+    if "angle" in table:
+        low, high = (math.radians(v) for v in table["angle"])
+        mask &= (theta >= low - 1e-9) & (theta <= high + 1e-9)
+    if "block" in table:
+        names = results.get("blocks") or []
+        index = next((i for i, b in enumerate(names) if b.get("name") == table["block"]), None)
+        if index is None:
+            raise ExtractError(f"the results have no block '{table['block']}'")
+        mask &= np.asarray(columns["block"]) == index
+    if not mask.any():
+        raise ExtractError(f"no {of} in the selection {dict((k, table[k]) for k in SELECTION_KEYS if k in table)}")
+    return columns, mask, x, y, r, theta
+
+
+def _values(columns, of, quantity, theta):
+    from vdec_verify.extract import ExtractError
+    c, s = np.cos(theta), np.sin(theta)
+    if of == "zones":
+        if quantity not in ZONE_QUANTITIES:
+            raise ExtractError(f"zones have no quantity '{quantity}' (known: {', '.join(ZONE_QUANTITIES)})")
+        if quantity in ("sxx", "syy", "sxy", "szz"):
+            return np.asarray(columns[quantity], dtype=float)
+        sxx, syy, sxy = (np.asarray(columns[k], dtype=float) for k in ("sxx", "syy", "sxy"))
+        if quantity == "srr":
+            return sxx * c * c + syy * s * s + 2.0 * sxy * s * c
+        if quantity == "stt":
+            return sxx * s * s + syy * c * c - 2.0 * sxy * s * c
+        return (syy - sxx) * s * c + sxy * (c * c - s * s)
+    if quantity not in GRIDPOINT_QUANTITIES:
+        raise ExtractError(f"gridpoints have no quantity '{quantity}' (known: {', '.join(GRIDPOINT_QUANTITIES)})")
+    ux = np.asarray(columns["displacement_x"], dtype=float)
+    uy = np.asarray(columns["displacement_y"], dtype=float)
+    return {"ux": ux, "uy": uy, "ur": ux * c + uy * s, "ut": -ux * s + uy * c}[quantity]
+
+
+def field(results, table):
+    from vdec_verify.extract import Series
+    of, quantity = table["of"], table["quantity"]
+    columns, mask, x, y, r, theta = _selected(results, table)
+    values = _values(columns, of, quantity, theta)[mask]
+    polar = quantity in POLAR or "r" in table or "angle" in table
+    abscissa = table.get("abscissa", "r" if polar else "x")
+    coordinate = {"x": x, "y": y, "r": r, "theta": theta}[abscissa][mask]
+    order = np.argsort(coordinate, kind="stable")
+    coordinates = {"x": x[mask][order], "y": y[mask][order], "r": r[mask][order], "theta": theta[mask][order]}
+    weights = np.asarray(columns["area"], dtype=float)[mask][order] if of == "zones" else None
+    return Series(coordinate[order], values[order], abscissa, f"{of}.{quantity}", coordinates, weights)
+
+
+def field_mean(results, table):
+    of, quantity = table["of"], table["quantity"]
+    columns, mask, _, _, _, theta = _selected(results, table)
+    values = _values(columns, of, quantity, theta)[mask]
+    if of == "zones":
+        area = np.asarray(columns["area"], dtype=float)[mask]
+        return float(np.sum(area * values) / np.sum(area))
+    return float(np.mean(values))
+
+
+def derived(results, table, exit_code=None):
+    from vdec_verify.extract import ExtractError, extract
+    from vdec_verify.problem import find_reference_function
+    inputs = {name: extract(sub, results, exit_code) for name, sub in table["inputs"].items()}
+    for name, value in inputs.items():
+        if not isinstance(value, float):
+            raise ExtractError(f"derived input '{name}' must be a scalar extract")
+    value = find_reference_function(table["function"])(**inputs, **table.get("params", {}))
+    if isinstance(value, tuple):
+        value = value[int(table.get("component", 0))]
+    return float(value)
