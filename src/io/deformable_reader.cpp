@@ -1,6 +1,9 @@
 #include "io/deformable_reader.hpp"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <cmath>
 #include <numbers>
 
@@ -166,6 +169,54 @@ Range readRange(TableReader& r, std::string_view key) {
   return {v.x, v.y};
 }
 
+// A boundary stress given along a boundary as a table of polar angle (degrees, about the
+// boundary's centre) against sxx, syy, sxy, read from a CSV file beside the scene: for far-field
+// values that no constant-plus-gradient stress describes (an exact solution on a truncated
+// domain). Values between rows are interpolated linearly.
+struct StressTable {
+  std::vector<double> angle;
+  std::vector<std::array<double, 3>> stress;
+  std::string file;
+
+  std::array<double, 3> at(double a, TableReader& r) const {
+    if (a < angle.front() - 1e-9 || a > angle.back() + 1e-9)
+      r.fail("stress_table", file + " covers angles " + shown(angle.front()) + " to " + shown(angle.back()) +
+                                 " degrees, not the edge at " + shown(a) + " degrees");
+    const auto it = std::upper_bound(angle.begin(), angle.end(), a);
+    const std::size_t k = std::clamp<std::size_t>(static_cast<std::size_t>(it - angle.begin()), 1, angle.size() - 1);
+    const double w = (a - angle[k - 1]) / (angle[k] - angle[k - 1]);
+    std::array<double, 3> out{};
+    for (int i = 0; i < 3; ++i) out[i] = (1.0 - w) * stress[k - 1][i] + w * stress[k][i];
+    return out;
+  }
+};
+
+StressTable readStressTable(TableReader& r, const std::string& scenePath) {
+  StressTable t;
+  const std::string name = r.string("stress_table");
+  t.file = (std::filesystem::path(scenePath).parent_path() / name).string();
+  std::ifstream in(t.file);
+  if (!in) r.fail("stress_table", "cannot open '" + t.file + "'");
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line[0] == '#' || std::isalpha(static_cast<unsigned char>(line[0]))) continue;  // header
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream row(line);
+    double a, sxx, syy, sxy;
+    std::string extra;
+    if (!(row >> a >> sxx >> syy >> sxy) || (row >> extra))
+      r.fail("stress_table", t.file + ":" + std::to_string(number) + ": expected four numbers: angle_deg, sxx, syy, sxy");
+    if (!t.angle.empty() && !(a > t.angle.back()))
+      r.fail("stress_table", t.file + ":" + std::to_string(number) + ": angles must increase");
+    t.angle.push_back(a);
+    t.stress.push_back({sxx, syy, sxy});
+  }
+  if (t.angle.size() < 2) r.fail("stress_table", t.file + ": needs at least two rows");
+  return t;
+}
+
 }  // namespace
 
 void readBoundaries(TableReader& top, Model& m, const std::string& path,
@@ -200,7 +251,9 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
     if (count == 0) r.failTable("selects no gridpoint of block '" + m.blocks.name[block] + "': check x, y, r, angle");
 
     const bool fix = r.has("fix"), vx = r.has("velocity_x"), vy = r.has("velocity_y");
-    const bool stress = r.has("stress"), pressure = r.has("pressure");
+    const bool tabulated = r.has("stress_table");
+    const bool stress = r.has("stress") || tabulated, pressure = r.has("pressure");
+    if (tabulated && r.has("stress")) r.fail("stress_table", "give either stress or stress_table");
     if (!(fix || vx || vy || stress || pressure))
       r.failTable("sets nothing: give fix, velocity_x, velocity_y, stress or pressure");
     if ((fix || vx || vy) && (stress || pressure))
@@ -229,9 +282,14 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
       }
     } else {
       std::array<double, 3> s{}, gx{}, gy{};
+      StressTable stressTable;
       if (pressure) {
         const double p = r.number("pressure");
         s = {-p, -p, 0.0};
+      } else if (tabulated) {
+        if (r.has("stress_gradient_x") || r.has("stress_gradient_y"))
+          r.fail("stress_table", "a stress table sets the stress along the boundary; it takes no gradients");
+        stressTable = readStressTable(r, path);
       } else {
         s = triple(r, "stress");
       }
@@ -247,9 +305,17 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
           LoadedEdge e;
           e.from = from;
           e.to = to;
-          e.sxx = s[0] + gx[0] * mid.x + gy[0] * mid.y;
-          e.syy = s[1] + gx[1] * mid.x + gy[1] * mid.y;
-          e.sxy = s[2] + gx[2] * mid.x + gy[2] * mid.y;
+          if (tabulated) {
+            const Vec2 d = mid - centre;
+            const std::array<double, 3> v = stressTable.at(std::atan2(d.y, d.x) * 180.0 / std::numbers::pi, r);
+            e.sxx = v[0];
+            e.syy = v[1];
+            e.sxy = v[2];
+          } else {
+            e.sxx = s[0] + gx[0] * mid.x + gy[0] * mid.y;
+            e.syy = s[1] + gx[1] * mid.x + gy[1] * mid.y;
+            e.sxy = s[2] + gx[2] * mid.x + gy[2] * mid.y;
+          }
           m.loadedEdges.push_back(e);
           ++edges;
         }
