@@ -525,3 +525,13 @@ def test_homogeneous_displacement_of_a_uniaxial_sample():
     # Held elsewhere: the field shifts with the held point.
     ux, uy = el.plane_strain_homogeneous_displacement(x=1.0, y=2.0, sigma_xx=0.0, sigma_yy=-1e6, x0=1.0, y0=1.0, **ROCK)
     assert ux == pytest.approx(0.0, abs=1e-20) and uy == pytest.approx(-0.9375e-4, rel=1e-12)
+
+
+@REQ
+def test_wave_arrival_times():
+    # E = 10 GPa, nu = 0.25, rho = 2500: K = 6.6667 GPa, G = 4 GPa, M = K + 4G/3 = 12 GPa;
+    # c_p = sqrt(12e9 / 2500) = 2190.890 m/s, c_s = sqrt(4e9 / 2500) = 1264.911 m/s;
+    # over 50 m: 22.8218 ms and 39.5285 ms.
+    assert el.p_wave_arrival_time(distance=50.0, E=10e9, nu=0.25, rho=2500.0) == pytest.approx(50.0 / 2190.890230, rel=1e-9)
+    assert el.s_wave_arrival_time(distance=50.0, E=10e9, nu=0.25, rho=2500.0) == pytest.approx(50.0 / 1264.911064, rel=1e-9)
+

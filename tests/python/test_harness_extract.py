@@ -130,3 +130,11 @@ def test_extraction_failures_say_what_is_missing(table, results, phrase):
 def test_nan_in_a_history_is_passed_on_not_hidden():
     results = results_with(h=(T, np.where(T > 0.5, math.nan, T)))
     assert math.isnan(extract({"kind": "final", "history": "h"}, results, 0))
+
+
+@pytest.mark.requirements("REQ-QA-006")
+def test_crossing_time_is_the_first_upward_crossing():
+    # value = 10 t + 1 on t = 0, 0.1, ...: it rises through 3.5 at t = 0.25 (between samples).
+    assert extract({"kind": "crossing_time", "history": "h", "level": 3.5}, RAMP, 0) == pytest.approx(0.25, rel=1e-12)
+    with pytest.raises(ExtractError, match="never rises through 20"):
+        extract({"kind": "crossing_time", "history": "h", "level": 20.0}, RAMP, 0)

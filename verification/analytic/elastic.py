@@ -358,3 +358,17 @@ def step_pulse_stress(*, x, t, c, v0, rho):
     """
     _, v = step_pulse_arrival(x=x, t=t, c=c, v0=v0)
     return -_arr(rho) * c * v
+
+
+def p_wave_arrival_time(*, distance, E, nu, rho):
+    """Time for a P-wave front to travel `distance` in a laterally confined column (plane strain,
+    e_xx = e_zz = 0): distance / c_p, c_p = sqrt((K + 4G/3) / rho) (p_wave_speed)."""
+    K, G = bulk_shear_from_young(E=E, nu=nu)
+    return _arr(distance) / p_wave_speed(K=K, G=G, rho=rho)
+
+
+def s_wave_arrival_time(*, distance, E, nu, rho):
+    """Time for an S-wave front to travel `distance`: distance / c_s, c_s = sqrt(G / rho)."""
+    _, G = bulk_shear_from_young(E=E, nu=nu)
+    return _arr(distance) / s_wave_speed(G=G, rho=rho)
+

@@ -19,6 +19,8 @@ window = [t0, t1] keeps the samples with t0 <= t <= t1.
     log_decrement  history [window] [level]           mean of ln(p_k / p_k+1) over successive peaks p_k of
                                                       value - level above level (one per period; default
                                                       level: the final value of the whole history)
+    crossing_time  history, level                     the first time the history rises through level (linear
+                                                      interpolation between samples): a wave's arrival
     run_meta       path                               a number at a dotted path in results["run"] or
                                                       results["energy"], e.g. "energy.largest_excess"
     exit_code      (none)                             the exit code of the run
@@ -189,6 +191,15 @@ def log_decrement(results, table):
     return float(np.mean(np.log(peaks[:-1] / peaks[1:])))
 
 
+def crossing_time(results, table):
+    name = table["history"]
+    t, value = read_history(results, name)
+    crossings = upward_crossings(t, value, float(table["level"]))
+    if crossings.size == 0:
+        raise ExtractError(f"history '{name}' never rises through {table['level']:g}")
+    return float(crossings[0])
+
+
 def run_meta(results, table):
     node = results
     for part in table["path"].split("."):
@@ -220,6 +231,7 @@ KINDS = {
     "slope": Kind(slope, ("history",), ("window",), False),
     "period": Kind(period, ("history",), ("window", "level"), False),
     "log_decrement": Kind(log_decrement, ("history",), ("window", "level"), False),
+    "crossing_time": Kind(crossing_time, ("history", "level"), (), False),
     "run_meta": Kind(run_meta, ("path",), (), False),
     "exit_code": Kind(None, (), (), False),
     "field": Kind(fields.field, ("of", "quantity"), fields.SELECTION_KEYS + ("abscissa",), True),
