@@ -12,6 +12,7 @@
 #include "motion/gridpoint_motion.hpp"
 #include "motion/rigid_motion.hpp"
 #include "zone/cst.hpp"
+#include "zone/direct_solve.hpp"
 
 namespace vdec {
 
@@ -48,6 +49,11 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   const double dtBlocks = anyFreeRigid || !hasZones_ ? rigidBlockTimeStep(model_, settings_.frac) : INFINITY;
   if (hasZones_) {
     prepareZones(model_);
+    if (settings_.staticSolve) {
+      if (hasRigidBlocks_)
+        throw SceneError("solver.static_solve: the direct solve covers deformable blocks only; this scene has rigid blocks");
+      staticSolveSeconds_ = solveStaticDirect(model_).seconds;
+    }
     if (settings_.densityScaling) {
       // 1.3-32 to 1.3-34: inertial masses chosen so that every gridpoint is at the same stable
       // step, the unit step where blocks do not need a smaller one; weights stay exact.
@@ -298,6 +304,7 @@ RunReport Cycle::run() {
   report.energy.externalWork -= lastExternalWork_;
   report.lastMonitors = monitors_;
   report.detectionScans = detection_.scans();
+  report.staticSolveSeconds = staticSolveSeconds_;
   report.wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
   return report;
 }

@@ -22,6 +22,7 @@ struct RunSettings {
   double massDamping = 0.0;   // alpha of 1.3-21, 1/s
   bool adaptiveDamping = false;  // alpha by the servo of 1.3-23 instead
   bool densityScaling = false;   // gridpoint inertial masses scaled to one step (1.3-32 to 1.3-34)
+  bool staticSolve = false;      // start from the direct solution of the elastic zones (zone/direct_solve)
   StopCriteria stop;
   bool profile = false;
   bool progress = false;
@@ -55,6 +56,7 @@ struct RunReport {
   EnergyReport energy;
   Monitors lastMonitors;
   int detectionScans = 0;
+  double staticSolveSeconds = -1.0;  // < 0: no direct solve
   double wallSeconds = 0.0;
   // Set when a numerical error stopped the run; the report then holds the state up to it.
   std::string error;
@@ -112,6 +114,7 @@ class Cycle {
   bool hasZones_ = false, hasRigidBlocks_ = false, hasContacts_ = false;
   double alpha_ = 0.0;                       // mass damping in use, 1/s
   double servoPower_ = 0.0, servoRate_ = 0.0;
+  double staticSolveSeconds_ = -1.0;
   EnergyReport energy_;
   Monitors monitors_;
 };

@@ -211,6 +211,7 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     if (scene.settings.adaptiveDamping && t->has("mass_damping"))
       t->fail("mass_damping", "adaptive_damping sets the mass damping itself; give one or the other");
     scene.settings.densityScaling = t->boolean("density_scaling", false);
+    scene.settings.staticSolve = t->boolean("static_solve", false);
     t->finish();
   }
   {

@@ -12,7 +12,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1]))
 from analytic.elastic import kirsch_cartesian_stress  # noqa: E402
 
-A, R, S_X, S_Y = 1.0, 4.0, -10e6, 0.0
+A, R, S_X, S_Y = 1.0, 4.0, -10e3, 0.0
 
 angles = np.linspace(0.0, 90.0, 901)
 theta = np.radians(angles)

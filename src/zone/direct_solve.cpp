@@ -1,0 +1,162 @@
+#include "zone/direct_solve.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "motion/gridpoint_motion.hpp"
+#include "zone/cst.hpp"
+
+namespace vdec {
+
+namespace {
+
+// Gradients of the linear shape functions of a zone on positions p (b = dN/dx, c = dN/dy).
+struct ShapeGradients {
+  double b[3], c[3], area;
+};
+
+ShapeGradients gradients(Vec2 p0, Vec2 p1, Vec2 p2) {
+  const double twice = cross(p1 - p0, p2 - p0);
+  const double inv = 1.0 / twice;
+  return {{(p1.y - p2.y) * inv, (p2.y - p0.y) * inv, (p0.y - p1.y) * inv},
+          {(p2.x - p1.x) * inv, (p0.x - p2.x) * inv, (p1.x - p0.x) * inv},
+          0.5 * twice};
+}
+
+constexpr int kMaxSolves = 6;
+constexpr double kResidualTolerance = 1e-12;
+
+// One linear solve on the current configuration; returns the norm of the residual it solved for
+// and that of the external loads, and adds the largest displacement to `report`.
+std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
+  Gridpoints& g = m.gridpoints;
+  Zones& zn = m.zones;
+  // Unknowns: the free components; driven ones must be held still.
+  std::vector<int> unknown(2 * g.size(), -1);
+  int count = 0;
+  for (int i = 0; i < g.size(); ++i) {
+    for (int d = 0; d < 2; ++d) {
+      const bool driven = g.driven[i] & (d == 0 ? DriveX : DriveY);
+      const double v = d == 0 ? g.velocity[i].x : g.velocity[i].y;
+      if (driven && v != 0.0)
+        throw SceneError("solver.static_solve: a gridpoint of block '" + m.blocks.name[g.block[i]] +
+                         "' is driven at a velocity; a static solve needs gridpoints fixed or free");
+      if (!driven) unknown[2 * i + d] = count++;
+    }
+  }
+  // Loads: gravity and boundary tractions, plus the forces of the zones' present stresses.
+  applyEdgeTractions(m);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(count);
+  for (int i = 0; i < g.size(); ++i) {
+    const Vec2 load = g.gravityMass[i] * m.gravity + g.appliedForce[i];
+    if (unknown[2 * i] >= 0) f[unknown[2 * i]] += load.x;
+    if (unknown[2 * i + 1] >= 0) f[unknown[2 * i + 1]] += load.y;
+  }
+  const double externalNorm = f.norm();
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(36 * static_cast<std::size_t>(zn.size()));
+  for (int z = 0; z < zn.size(); ++z) {
+    const auto& n = zn.gridpoint[z];
+    const ShapeGradients s = gradients(g.position[n[0]], g.position[n[1]], g.position[n[2]]);
+    const BlockMaterial& mat = m.blockMaterials[zn.material[z]];
+    const double a1 = mat.bulk + 4.0 * mat.shear / 3.0, a2 = mat.bulk - 2.0 * mat.shear / 3.0, G = mat.shear;
+    // B (3 x 6): strains (exx, eyy, gxy) from (ux0, uy0, ux1, uy1, ux2, uy2).
+    double B[3][6] = {};
+    for (int c = 0; c < 3; ++c) {
+      B[0][2 * c] = s.b[c];
+      B[1][2 * c + 1] = s.c[c];
+      B[2][2 * c] = s.c[c];
+      B[2][2 * c + 1] = s.b[c];
+    }
+    const double D[3][3] = {{a1, a2, 0.0}, {a2, a1, 0.0}, {0.0, 0.0, G}};
+    double DB[3][6] = {};
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 6; ++k)
+        for (int q = 0; q < 3; ++q) DB[r][k] += D[r][q] * B[q][k];
+    int dof[6];
+    for (int c = 0; c < 3; ++c) {
+      dof[2 * c] = unknown[2 * n[c]];
+      dof[2 * c + 1] = unknown[2 * n[c] + 1];
+    }
+    // Internal force of the present stress, -A B^T sigma (tension positive), joins the loads.
+    const double sigma[3] = {zn.sxx[z], zn.syy[z], zn.sxy[z]};
+    for (int k = 0; k < 6; ++k) {
+      if (dof[k] < 0) continue;
+      double fk = 0.0;
+      for (int q = 0; q < 3; ++q) fk -= s.area * B[q][k] * sigma[q];
+      f[dof[k]] += fk;
+      for (int l = 0; l < 6; ++l) {
+        if (dof[l] < 0) continue;
+        double kkl = 0.0;
+        for (int q = 0; q < 3; ++q) kkl += B[q][k] * DB[q][l];
+        entries.emplace_back(dof[k], dof[l], s.area * kkl);
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> K(count, count);
+  K.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(K);
+  bool held = solver.info() == Eigen::Success;
+  if (held) {
+    // A stiffness with rigid-body modes factors with (near) zero pivots: reject those.
+    const Eigen::VectorXd pivots = solver.vectorD();
+    const double largest = pivots.cwiseAbs().maxCoeff();
+    held = pivots.minCoeff() > 1e-12 * largest;
+  }
+  if (!held)
+    throw SceneError("solver.static_solve: the zones are not held against rigid-body motion (the stiffness "
+                     "is singular); fix more gridpoint components");
+  const Eigen::VectorXd u = solver.solve(f);
+  // Apply: stresses take the elastic increment of du on the configuration it was solved on.
+  report.unknowns = count;
+  for (int z = 0; z < zn.size(); ++z) {
+    const auto& n = zn.gridpoint[z];
+    const ShapeGradients s = gradients(g.position[n[0]], g.position[n[1]], g.position[n[2]]);
+    double e[3] = {};
+    for (int c = 0; c < 3; ++c) {
+      const int ix = unknown[2 * n[c]], iy = unknown[2 * n[c] + 1];
+      const double ux = ix >= 0 ? u[ix] : 0.0, uy = iy >= 0 ? u[iy] : 0.0;
+      e[0] += s.b[c] * ux;
+      e[1] += s.c[c] * uy;
+      e[2] += s.c[c] * ux + s.b[c] * uy;
+    }
+    const BlockMaterial& mat = m.blockMaterials[zn.material[z]];
+    const double a1 = mat.bulk + 4.0 * mat.shear / 3.0, a2 = mat.bulk - 2.0 * mat.shear / 3.0;
+    zn.sxx[z] += a1 * e[0] + a2 * e[1];
+    zn.syy[z] += a2 * e[0] + a1 * e[1];
+    zn.sxy[z] += mat.shear * e[2];
+    zn.szz[z] += a2 * (e[0] + e[1]);
+  }
+  for (int i = 0; i < g.size(); ++i) {
+    const int ix = unknown[2 * i], iy = unknown[2 * i + 1];
+    const Vec2 du{ix >= 0 ? u[ix] : 0.0, iy >= 0 ? u[iy] : 0.0};
+    g.position[i] += du;
+    g.velocity[i] = {};
+    report.largestDisplacement = std::max(report.largestDisplacement, norm(du));
+  }
+  return {f.norm(), externalNorm};
+}
+
+}  // namespace
+
+DirectSolveReport solveStaticDirect(Model& m) {
+  const auto start = std::chrono::steady_clock::now();
+  DirectSolveReport report;
+  // The explicit cycles move the gridpoints and apply the tractions on the deformed outline; the
+  // linear solve does not. Solving again on the configuration reached removes that remainder
+  // (the stiffness lacks only the geometric terms, so each solve gains about as many digits as
+  // the strains are small) until the residual is at round-off of the loads.
+  for (int k = 0; k < kMaxSolves; ++k) {
+    ++report.solves;
+    const auto [residual, external] = solveOnce(m, report);
+    if (!(residual > kResidualTolerance * external)) break;
+  }
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace vdec
