@@ -99,8 +99,8 @@ void ContactDetection::scan(Model& m) {
   const int n = m.blocks.size();
   for (const auto& [a, b] : pairs) {
     if (!m.blocks.deformable[a] && !m.blocks.deformable[b]) continue;
-    throw GeometryError("block '" + m.blocks.name[m.blocks.deformable[a] ? a : b] + "' is deformable and within the "
-                        "contact tolerance of block '" + m.blocks.name[m.blocks.deformable[a] ? b : a] +
+    throw GeometryError("block '" + m.blocks.name[m.blocks.deformable[a] ? a : b] + "' is deformable and its bounding "
+                        "box comes within the contact tolerance of block '" + m.blocks.name[m.blocks.deformable[a] ? b : a] +
                         "' (at cycle " + std::to_string(m.cycle) + "): contacts on deformable blocks are not "
                         "implemented yet; keep deformable blocks apart from other blocks, or make them rigid");
   }

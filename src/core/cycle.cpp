@@ -26,8 +26,8 @@ using Clock = std::chrono::steady_clock;
 // holds two to three times the energy supplied. The alarm at 1.5 lies between the two.
 constexpr double kEnergyExcessLimit = 1.5;
 // Adaptive damping: alpha moves by this factor every other step towards R = 0.5, between
-// 1e-4 / dt (little damping) and 1 / dt (alpha dt / 2 = 0.5, far past critical for every mode
-// the step resolves).
+// 1e-4 / dt (little damping) and 1 / dt (alpha dt / 2 = 0.5, the most 1.3-21 takes before it
+// reverses velocities; past critical for every mode with w dt < 0.5).
 constexpr double kAdaptiveTarget = 0.5;
 constexpr double kAdaptiveGain = 1.05;
 constexpr double kAdaptiveStart = 1e-4;
@@ -186,8 +186,11 @@ void Cycle::adaptDamping(const StepTotals& t) {
   servoRate_ += t.kineticRate;
   if (model_.cycle % 2 == 0) return;
   const double rate = std::abs(servoRate_);
-  const double ratio = rate > 0.0 ? servoPower_ / rate : (servoPower_ > 0.0 ? INFINITY : 0.0);
-  alpha_ *= ratio < kAdaptiveTarget ? kAdaptiveGain : 1.0 / kAdaptiveGain;
+  // At rest (nothing moving, nothing changing) there is nothing to measure: alpha stays.
+  if (rate > 0.0 || servoPower_ > 0.0) {
+    const double ratio = rate > 0.0 ? servoPower_ / rate : INFINITY;
+    alpha_ *= ratio < kAdaptiveTarget ? kAdaptiveGain : 1.0 / kAdaptiveGain;
+  }
   alpha_ = std::clamp(alpha_, kAdaptiveStart / dt_, kAdaptiveMax / dt_);
   servoPower_ = servoRate_ = 0.0;
 }

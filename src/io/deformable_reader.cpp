@@ -65,6 +65,8 @@ std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& v
   if (!t) r.fail("zoning", "must be a table, e.g. zoning = { nx = 8, ny = 4 }");
   const Polygon p = vertices();
   if (p.size() != 4) r.fail("zoning", "structured zoning needs a quadrilateral block (4 vertices), got " + std::to_string(p.size()));
+  // Convex and counter-clockwise, like every block (edge lengths do not matter without contacts).
+  validateBlockPolygon(p, 0.0, r.location());
   const int nx = positiveCount(*t, "nx", 4096), ny = positiveCount(*t, "ny", 4096);
   t->finish();
   return crossedQuadMesh({p[0], p[1], p[2], p[3]}, nx, ny);
@@ -231,7 +233,8 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
     const Range xr = readRange(r, "x"), yr = readRange(r, "y"), rr = readRange(r, "r");
     Range angle = readRange(r, "angle");
     const Vec2 centre = r.vec2("centre", {0.0, 0.0});
-    if (!r.has("r") && !r.has("angle") && r.has("centre")) r.fail("centre", "is used only with r or angle");
+    if (!r.has("r") && !r.has("angle") && !r.has("stress_table") && r.has("centre"))
+      r.fail("centre", "is used only with r, angle or stress_table");
     // Selection slack: round-off of the generated coordinates, relative to the block's size.
     const double slack = 1e-9 * std::max(1.0, 2.0 * m.blocks.boundingRadius[block]);
     std::vector<char> selected(m.gridpoints.size(), 0);

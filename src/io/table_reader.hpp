@@ -40,6 +40,8 @@ class TableReader {
     const toml::node* node = table_.get(key);
     throw SceneError(where(node ? node->source() : table_.source()) + ": key '" + qualified(key) + "': " + message);
   }
+  // file:line of the table, and its name, for messages raised elsewhere (geometry checks).
+  std::string location() const { return where(table_.source()) + ": [" + prefix_ + "]"; }
   // An error about the table as a whole, e.g. a choice among keys none of which is there.
   [[noreturn]] void failTable(const std::string& message) const {
     throw SceneError(where(table_.source()) + ": [" + prefix_ + "]: " + message);

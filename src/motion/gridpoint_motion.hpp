@@ -1,5 +1,5 @@
 #pragma once
-// Law of motion for the gridpoints of deformable blocks (NUREG/CR-5429 1.3-7 to 1.3-9, with
+// Law of motion for the gridpoints of deformable blocks (NUREG/CR-5429 1.4-117, 1.3-7 to 1.3-9, with
 // inertial and gravitational masses apart for density scaling, 1.3-32 to 1.3-34) and mass-
 // proportional damping (1.3-21).
 #include "core/model.hpp"
@@ -14,7 +14,7 @@ struct GridpointStepTotals {
   double sumForceMagnitude = 0.0;    // of the zone forces on each free gridpoint, for the ratio
   int freeGridpoints = 0;
   double largestDisplacement = 0.0;
-  double dampingPower = 0.0;         // alpha sum m vbar^2, for adaptive damping (1.3-23)
+  double dampingPower = 0.0;         // sum m vbar^2 (times alpha: the power mass damping absorbs; 1.3-23)
   double kineticRate = 0.0;          // sum m vbar (v1 - v0) / dt, the rate of change of kinetic energy
 };
 

@@ -97,7 +97,16 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
     // configuration halfway (Hughes and Winget 1980), on which a rigid rotation has an exactly
     // skew gradient: no strain, and a spin whose rotation below is the rotation itself.
     const Vec2 m0 = p0 - 0.5 * dt * v[0], m1 = p1 - 0.5 * dt * v[1], m2 = p2 - 0.5 * dt * v[2];
-    const double inv = 1.0 / cross(m1 - m0, m2 - m0);
+    const double halfStepArea = cross(m1 - m0, m2 - m0);
+    if (!(halfStepArea > 0.0)) {
+#pragma omp critical
+      {
+        inverted = true;
+        firstInverted = std::min(firstInverted, z);
+      }
+      return 0.0;
+    }
+    const double inv = 1.0 / halfStepArea;
     // Gradients of the linear shape functions; Wilkins' contour integral gives the same.
     const double bx[3] = {(m1.y - m2.y) * inv, (m2.y - m0.y) * inv, (m0.y - m1.y) * inv};
     const double by[3] = {(m2.x - m1.x) * inv, (m0.x - m2.x) * inv, (m1.x - m0.x) * inv};
@@ -124,7 +133,7 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
       syy = ryy;
       sxy = rxy;
     }
-    // Plane-strain elasticity (1.4-116): a1 = K + 4G/3, a2 = K - 2G/3.
+    // Plane-strain elasticity (Hooke, 1.4-105, as the law M of 1.4-115): a1 = K + 4G/3, a2 = K - 2G/3.
     const double exx = dvxdx * dt, eyy = dvydy * dt, exy = 0.5 * (dvxdy + dvydx) * dt;
     const double a1 = mat.bulk + 4.0 * mat.shear / 3.0, a2 = mat.bulk - 2.0 * mat.shear / 3.0;
     sxx += a1 * exx + a2 * eyy;
@@ -135,7 +144,7 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
     zn.syy[z] = syy;
     zn.sxy[z] = sxy;
     zn.szz[z] = szz;
-    // Nodal forces (1.4-117) on the configuration reached: F_i = -A sigma grad N_i, which is
+    // Nodal forces (1.4-116) on the configuration reached: F_i = -A sigma grad N_i, which is
     // -(1/2) sigma (n1 S1 + n2 S2) over the two sides at node i; tension positive.
     const double cx[3] = {0.5 * (p1.y - p2.y), 0.5 * (p2.y - p0.y), 0.5 * (p0.y - p1.y)};
     const double cy[3] = {0.5 * (p2.x - p1.x), 0.5 * (p0.x - p2.x), 0.5 * (p1.x - p0.x)};
@@ -147,7 +156,8 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
   if (inverted) {
     std::ostringstream s;
     s << zoneName(m, firstInverted) << " has turned inside out at cycle " << m.cycle << ", time " << m.time
-      << " s: the step is unstable or the zone is crushed; lower solver.frac, check the loads, or refine the zoning";
+      << " s: the zone was crushed or the motion is unstable; check the loads and the boundary conditions, and "
+      << "that no joint or contact stiffness far above the zones' shortens the stable step";
     throw InstabilityError(s.str());
   }
   return {energy};

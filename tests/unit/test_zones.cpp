@@ -268,7 +268,7 @@ fix = ["x", "y", "rotation"]
     FAIL() << "a deformable block near another block was accepted";
   } catch (const GeometryError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("block 'patch' is deformable and within the contact tolerance of block 'wall'"), std::string::npos)
+    EXPECT_NE(what.find("block 'patch' is deformable and its bounding box comes within the contact tolerance of block 'wall'"), std::string::npos)
         << what;
   }
 }
@@ -348,4 +348,14 @@ TEST(Zones, DirectSolveRefusesUnheldOrMovingZones) {
   Scene moving = sceneFromText(quadScene(2, 2, "[solver]\nstatic_solve = true\n[[boundary]]\nblock = \"patch\"\n"
                                                "y = [0.0, 0.3]\nfix = [\"x\"]\nvelocity_y = 0.1\n"), "moving");
   EXPECT_THROW(Cycle(moving.model, moving.settings, {}), SceneError);
+}
+
+TEST(Zones, ZonedQuadrilateralMustBeConvexAndCounterClockwise) {
+  VDEC_REQUIREMENTS("REQ-ZONE-005");
+  std::string clockwise = quadScene(2, 2);
+  const std::string quad = "[[0.0, 0.0], [2.0, 0.3], [2.4, 1.9], [-0.2, 1.5]]";
+  clockwise.replace(clockwise.find(quad), quad.size(), "[[0.0, 0.0], [-0.2, 1.5], [2.4, 1.9], [2.0, 0.3]]");
+  const std::string what = sceneError(clockwise, "z-clockwise");
+  EXPECT_NE(what.find("z-clockwise.toml:"), std::string::npos) << what;
+  EXPECT_NE(what.find("[block[0]]"), std::string::npos) << what;
 }
