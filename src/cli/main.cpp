@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "io/build_info.hpp"
 #include "io/results_writer.hpp"
 #include "io/scene_reader.hpp"
+#include "io/vtk_writer.hpp"
 
 namespace {
 
@@ -21,6 +23,8 @@ int runScene(const std::string& scenePath, const std::string& outDir, const std:
   vdec::Scene scene = vdec::readScene(scenePath, overrides);
   scene.settings.profile = profile;
   scene.settings.progress = true;
+  vdec::VtkSeries vtk((std::filesystem::path(outDir) / "vtk").string());
+  scene.settings.snapshot = [&vtk](const vdec::Model& model) { vtk.write(model); };
   vdec::Cycle cycle(scene.model, scene.settings, scene.histories);
   const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const vdec::RunReport report = cycle.run();

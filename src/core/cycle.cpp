@@ -263,7 +263,9 @@ RunReport Cycle::run() {
   auto lastPrint = start;
   if (!historySpecs_.empty()) recordHistories(true);
   RunReport report;
+  const bool snapshots = settings_.snapshotEvery > 0 && settings_.snapshot;
   try {
+    if (snapshots) settings_.snapshot(model_);
     while (!stopReached(report.stopReason)) {
       for (Stage& stage : stages_) {
         if (settings_.profile) {
@@ -274,6 +276,8 @@ RunReport Cycle::run() {
           stage.step();
         }
       }
+      if (settings_.snapshotEvery > 0 && settings_.snapshot && model_.cycle % settings_.snapshotEvery == 0)
+        settings_.snapshot(model_);
       if (progress && (model_.cycle & 255) == 0) {
         const auto now = Clock::now();
         if (now - lastPrint > std::chrono::milliseconds(250)) {
@@ -282,6 +286,7 @@ RunReport Cycle::run() {
         }
       }
     }
+    if (snapshots && model_.cycle % settings_.snapshotEvery != 0) settings_.snapshot(model_);
   } catch (const Error& e) {
     report.stopReason = "error";
     report.error = e.what();

@@ -26,6 +26,10 @@ struct RunSettings {
   StopCriteria stop;
   bool profile = false;
   bool progress = false;
+  // Snapshots: the caller's writer is called at the start, every `snapshotEvery` cycles and at
+  // the end (0: never).
+  long long snapshotEvery = 0;
+  std::function<void(const Model&)> snapshot;
 };
 
 struct EnergyReport {

@@ -230,6 +230,15 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     t->finish();
   }
 
+  if (auto t = top.subtable("output")) {
+    if (t->has("vtk_every")) {
+      const long long every = t->integer("vtk_every");
+      if (every < 1) t->fail("vtk_every", "must be >= 1 (cycles between VTK snapshots)");
+      scene.settings.snapshotEvery = every;
+    }
+    t->finish();
+  }
+
   // Blocks, explicit and cut from regions, in input order.
   std::vector<BlockInput> inputs;
   std::map<std::string, std::string> nameOrigin;

@@ -1,0 +1,143 @@
+#include "io/vtk_writer.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "contact/contact_geometry.hpp"
+#include "core/errors.hpp"
+
+namespace vdec {
+
+namespace {
+
+// VTK cell types.
+constexpr int kVertex = 1, kTriangle = 5, kPolygon = 7;
+
+struct Grid {
+  std::vector<Vec2> points;
+  std::vector<std::vector<int>> cells;
+  std::vector<int> types;
+  // Point data: displacement and velocity (rigid block vertices take their block's).
+  std::vector<Vec2> displacement, velocity;
+  // Cell data.
+  std::vector<int> kind;  // 0 zone, 1 rigid block, 2 contact
+  std::vector<int> block;
+  std::vector<double> sxx, syy, sxy, szz, normalForce, shearForce;
+};
+
+void cellDefaults(Grid& g, int kind, int block) {
+  g.kind.push_back(kind);
+  g.block.push_back(block);
+  for (auto* v : {&g.sxx, &g.syy, &g.sxy, &g.szz, &g.normalForce, &g.shearForce}) v->push_back(0.0);
+}
+
+Grid collect(const Model& m) {
+  Grid g;
+  const Gridpoints& gp = m.gridpoints;
+  for (int i = 0; i < gp.size(); ++i) {
+    g.points.push_back(gp.position[i]);
+    g.displacement.push_back(gp.position[i] - gp.initialPosition[i]);
+    g.velocity.push_back(gp.velocity[i]);
+  }
+  for (int z = 0; z < m.zones.size(); ++z) {
+    const auto& n = m.zones.gridpoint[z];
+    g.cells.push_back({n[0], n[1], n[2]});
+    g.types.push_back(kTriangle);
+    cellDefaults(g, 0, m.zones.block[z]);
+    g.sxx.back() = m.zones.sxx[z];
+    g.syy.back() = m.zones.syy[z];
+    g.sxy.back() = m.zones.sxy[z];
+    g.szz.back() = m.zones.szz[z];
+  }
+  const Blocks& b = m.blocks;
+  for (int k = 0; k < b.size(); ++k) {
+    if (b.deformable[k]) continue;
+    std::vector<int> cell;
+    for (int v = b.firstVertex[k]; v < b.firstVertex[k] + b.vertexCount[k]; ++v) {
+      cell.push_back(static_cast<int>(g.points.size()));
+      g.points.push_back(m.vertices.position[v]);
+      g.displacement.push_back(b.centroid[k] - b.initialCentroid[k]);
+      g.velocity.push_back(b.velocity[k] + b.angularVelocity[k] * perp(m.vertices.position[v] - b.centroid[k]));
+    }
+    g.cells.push_back(cell);
+    g.types.push_back(kPolygon);
+    cellDefaults(g, 1, k);
+  }
+  for (const Contact& c : m.contacts) {
+    g.cells.push_back({static_cast<int>(g.points.size())});
+    g.points.push_back(contactPoint(m, c));
+    g.displacement.push_back({});
+    g.velocity.push_back({});
+    g.types.push_back(kVertex);
+    cellDefaults(g, 2, c.blockA);
+    g.normalForce.back() = m.normalForce(c);
+    g.shearForce.back() = m.shearForce(c);
+  }
+  return g;
+}
+
+template <class T>
+void dataArray(std::ostream& out, const char* name, const std::vector<T>& values, const char* type) {
+  out << "<DataArray type=\"" << type << "\" Name=\"" << name << "\" format=\"ascii\">";
+  for (const T& v : values) out << v << ' ';
+  out << "</DataArray>\n";
+}
+
+void vectorArray(std::ostream& out, const char* name, const std::vector<Vec2>& values) {
+  out << "<DataArray type=\"Float64\" Name=\"" << name << "\" NumberOfComponents=\"3\" format=\"ascii\">";
+  for (const Vec2& v : values) out << v.x << ' ' << v.y << " 0 ";
+  out << "</DataArray>\n";
+}
+
+}  // namespace
+
+void VtkSeries::write(const Model& m) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory_, ec);
+  char name[64];
+  std::snprintf(name, sizeof name, "snapshot_%09lld.vtu", m.cycle);
+  const std::string path = (std::filesystem::path(directory_) / name).string();
+  const Grid g = collect(m);
+  std::ofstream out(path);
+  if (ec || !out) throw OutputError(path + ": cannot write the VTK snapshot");
+  out.precision(17);
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+      << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << g.points.size() << "\" NumberOfCells=\"" << g.cells.size()
+      << "\">\n<Points>\n";
+  vectorArray(out, "position", g.points);
+  out << "</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">";
+  for (const auto& cell : g.cells)
+    for (int p : cell) out << p << ' ';
+  out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">";
+  long long offset = 0;
+  for (const auto& cell : g.cells) out << (offset += static_cast<long long>(cell.size())) << ' ';
+  out << "</DataArray>\n";
+  dataArray(out, "types", g.types, "UInt8");
+  out << "</Cells>\n<PointData Vectors=\"displacement\">\n";
+  vectorArray(out, "displacement", g.displacement);
+  vectorArray(out, "velocity", g.velocity);
+  out << "</PointData>\n<CellData>\n";
+  dataArray(out, "kind (0 zone, 1 rigid block, 2 contact)", g.kind, "Int32");
+  dataArray(out, "block", g.block, "Int32");
+  dataArray(out, "sxx", g.sxx, "Float64");
+  dataArray(out, "syy", g.syy, "Float64");
+  dataArray(out, "sxy", g.sxy, "Float64");
+  dataArray(out, "szz", g.szz, "Float64");
+  dataArray(out, "normal_force", g.normalForce, "Float64");
+  dataArray(out, "shear_force", g.shearForce, "Float64");
+  out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  if (!out) throw OutputError(path + ": write failed");
+  written_.emplace_back(m.time, name);
+  const std::string pvd = (std::filesystem::path(directory_) / "model.pvd").string();
+  std::ofstream collection(pvd);
+  collection.precision(17);
+  collection << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n<Collection>\n";
+  for (const auto& [time, file] : written_)
+    collection << "<DataSet timestep=\"" << time << "\" file=\"" << file << "\"/>\n";
+  collection << "</Collection>\n</VTKFile>\n";
+  if (!collection) throw OutputError(pvd + ": write failed");
+}
+
+}  // namespace vdec
