@@ -88,3 +88,17 @@ def test_derived_quantity_from_scalar_extracts():
                         "eyy": {"kind": "field_mean", "of": "gridpoints", "quantity": "uy", "y": [1.0, 1.0]}}}
     assert extract({**table, "component": 0}, results, 0) == pytest.approx(10e9, rel=1e-12)
     assert extract({**table, "component": 1}, results, 0) == pytest.approx(0.25, rel=1e-12)
+
+
+@REQ
+def test_derived_ratio_of_two_runs():
+    # 300 cycles in this run over 1200 in the run "slow": 0.25.
+    this = {"run": {"cycles": 300}}
+    runs = {"": this, "slow": {"run": {"cycles": 1200}}}
+    table = {"kind": "derived", "function": "ratio",
+             "inputs": {"numerator": {"kind": "run_meta", "path": "run.cycles"},
+                        "denominator": {"kind": "run_meta", "path": "run.cycles", "variant": "slow"}}}
+    assert extract(table, this, 0, runs) == pytest.approx(0.25, rel=1e-15)
+    with pytest.raises(ExtractError, match="reads run 'fast', which did not run"):
+        extract({**table, "inputs": {**table["inputs"], "denominator": {"kind": "run_meta", "path": "run.cycles",
+                                                                        "variant": "fast"}}}, this, 0, runs)

@@ -240,8 +240,9 @@ KINDS = {
 }
 
 
-def extract(table, results, exit_code):
-    """The value a check compares: a float or a Series. results is None when the run wrote none."""
+def extract(table, results, exit_code, runs=None):
+    """The value a check compares: a float or a Series. results is None when the run wrote none;
+    runs (run name -> results, "" the plain run) serves derived inputs that name a variant."""
     kind = table["kind"]
     if kind == "exit_code":
         if exit_code is None:
@@ -250,5 +251,5 @@ def extract(table, results, exit_code):
     if results is None:
         raise ExtractError("the run wrote no results.json")
     if kind == "derived":
-        return fields.derived(results, table, exit_code)
+        return fields.derived(results, table, exit_code, runs)
     return KINDS[kind].function(results, table)

@@ -15,7 +15,10 @@ displacement_x, displacement_y, ...} (initial positions).
                                                                        analytic package, inputs being other
                                                                        extract tables: a quantity the run
                                                                        measures only through a formula (E
-                                                                       and nu from strains)
+                                                                       and nu from strains); an input with
+                                                                       variant = NAME reads that run of the
+                                                                       problem ("" the plain run): a ratio
+                                                                       of two runs' cycles
 
 of = "zones" (quantities sxx, syy, sxy, szz and, about `centre`, srr, stt, srt) or "gridpoints"
 (ux, uy and, about `centre`, ur, ut). Selection ranges on the initial position: x, y, r (about
@@ -26,6 +29,14 @@ else x. Zones weight the L2 norm by their areas.
 import math
 
 import numpy as np
+
+def ratio(*, numerator, denominator):
+    """numerator / denominator: e.g. the cycles of one run over another's."""
+    return numerator / denominator
+
+
+# Arithmetic a derived extract may use besides the analytic package's inversion formulas.
+BUILTINS = {"ratio": ratio}
 
 ZONE_QUANTITIES = ("sxx", "syy", "sxy", "szz", "srr", "stt", "srt")
 GRIDPOINT_QUANTITIES = ("ux", "uy", "ur", "ut")
@@ -116,14 +127,25 @@ def field_mean(results, table):
     return float(np.mean(values))
 
 
-def derived(results, table, exit_code=None):
+def derived(results, table, exit_code=None, runs=None):
     from vdec_verify.extract import ExtractError, extract
     from vdec_verify.problem import find_reference_function
-    inputs = {name: extract(sub, results, exit_code) for name, sub in table["inputs"].items()}
+    inputs = {}
+    for name, sub in table["inputs"].items():
+        source = results
+        if "variant" in sub:
+            if runs is None or sub["variant"] not in runs:
+                raise ExtractError(f"derived input '{name}' reads run '{sub['variant']}', which did not run")
+            source = runs[sub["variant"]]
+            if source is None:
+                raise ExtractError(f"derived input '{name}': run '{sub['variant']}' wrote no results.json")
+            sub = {k: v for k, v in sub.items() if k != "variant"}
+        inputs[name] = extract(sub, source, exit_code, runs)
     for name, value in inputs.items():
         if not isinstance(value, float):
             raise ExtractError(f"derived input '{name}' must be a scalar extract")
-    value = find_reference_function(table["function"])(**inputs, **table.get("params", {}))
+    function = BUILTINS.get(table["function"]) or find_reference_function(table["function"])
+    value = function(**inputs, **table.get("params", {}))
     if isinstance(value, tuple):
         value = value[int(table.get("component", 0))]
     return float(value)

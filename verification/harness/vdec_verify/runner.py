@@ -209,11 +209,13 @@ def unevaluated_metric(check, message=""):
             "message": message}
 
 
-def judge_check(check, outcome):
-    """The metric of one check against its run; raises ReferenceProblem for an unusable reference."""
+def judge_check(check, outcome, outcomes=None):
+    """The metric of one check against its run; raises ReferenceProblem for an unusable reference.
+    outcomes (run name -> outcome) lets a derived extract read other runs of the problem."""
     metric = unevaluated_metric(check)
+    runs = {name: o.results for name, o in (outcomes or {}).items()}
     try:
-        numerical = extract(check.extract, outcome.results, outcome.exit_code)
+        numerical = extract(check.extract, outcome.results, outcome.exit_code, runs)
     except ExtractError as e:
         metric["message"] = f"cannot extract: {e}"
         return metric
@@ -303,7 +305,7 @@ def judge(entry, outcomes, level="full"):
             messages += problems
             continue
         try:
-            metric = judge_check(check, outcomes[check.variant])
+            metric = judge_check(check, outcomes[check.variant], outcomes)
         except (ReferenceProblem, LookupError) as e:
             invalid = True
             metric = unevaluated_metric(check, f"invalid reference: {e}")
