@@ -124,8 +124,14 @@ void Cycle::buildStages() {
                        }});
   }
   if (hasZones_) {
-    stages_.push_back({"zone-forces", [this] { step_.strainEnergy += computeZoneForces(model_, dt_).strainEnergy; }});
+    // The first step starts from the given configuration and stress: no motion has happened yet
+    // for the initial velocities, v(-dt/2), to have strained the zones.
+    stages_.push_back({"zone-forces", [this] {
+                         step_.strainEnergy += computeZoneForces(model_, model_.cycle == 0 ? 0.0 : dt_).strainEnergy;
+                       }});
     if (!model_.loadedEdges.empty()) stages_.push_back({"boundary-tractions", [this] { applyEdgeTractions(model_); }});
+    if (!model_.drivenVelocities.empty())
+      stages_.push_back({"boundary-velocities", [this] { applyDrivenVelocities(model_, dt_); }});
   }
   if (hasRigidBlocks_) {
     stages_.push_back({"rigid-block-motion", [this] {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "boundary/time_function.hpp"
 #include "core/vec2.hpp"
 
 namespace vdec {
@@ -107,6 +108,15 @@ struct GridpointZones {
 struct LoadedEdge {
   int from = -1, to = -1;  // gridpoints, counter-clockwise along the block boundary
   double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  int history = -1;        // Model::timeFunctions entry scaling the stress, -1: constant
+};
+
+// A gridpoint component driven at a velocity that varies in time: value times f(t).
+struct DrivenVelocity {
+  int gridpoint = -1;
+  int component = 0;       // 0 x, 1 y
+  double value = 0.0;
+  int history = -1;
 };
 
 // Boundary vertices of all blocks. For a rigid block they move with its rigid motion;
@@ -172,6 +182,8 @@ struct Model {
   Zones zones;
   GridpointZones gridpointZones;
   std::vector<LoadedEdge> loadedEdges;
+  std::vector<DrivenVelocity> drivenVelocities;  // only those with a time history
+  std::vector<TimeFunction> timeFunctions;
   // Each deformable block's outline: its boundary gridpoints, counter-clockwise.
   std::vector<std::pair<int, std::vector<int>>> blockBoundaries;
   std::vector<Contact> contacts;

@@ -219,6 +219,50 @@ StressTable readStressTable(TableReader& r, const std::string& scenePath) {
   return t;
 }
 
+TimeFunction readHistory(TableReader& r, const std::string& scenePath) {
+  auto t = r.subtable("history");
+  if (!t) r.fail("history", "must be a table, e.g. history = { kind = \"sine\", frequency = 10.0 }");
+  TimeFunction f;
+  const std::string kind = t->string("kind");
+  if (kind == "constant") {
+    f.kind = TimeFunction::Kind::Constant;
+  } else if (kind == "linear") {
+    f.kind = TimeFunction::Kind::Linear;
+    f.start = t->number("start", 0.0);
+    f.rate = t->number("rate");
+  } else if (kind == "sine" || kind == "cosine") {
+    f.kind = kind == "sine" ? TimeFunction::Kind::Sine : TimeFunction::Kind::Cosine;
+    f.frequency = t->positive("frequency");
+    f.phase = t->number("phase", 0.0);
+  } else if (kind == "table") {
+    f.kind = TimeFunction::Kind::Table;
+    f.name = (std::filesystem::path(scenePath).parent_path() / t->string("file")).string();
+    std::ifstream in(f.name);
+    if (!in) t->fail("file", "cannot open '" + f.name + "'");
+    std::string line;
+    int number = 0;
+    while (std::getline(in, line)) {
+      ++number;
+      if (line.empty() || line[0] == '#' || std::isalpha(static_cast<unsigned char>(line[0]))) continue;
+      std::replace(line.begin(), line.end(), ',', ' ');
+      std::istringstream row(line);
+      double time, value;
+      std::string extra;
+      if (!(row >> time >> value) || (row >> extra))
+        t->fail("file", f.name + ":" + std::to_string(number) + ": expected two numbers: t, f");
+      if (!f.t.empty() && !(time > f.t.back()))
+        t->fail("file", f.name + ":" + std::to_string(number) + ": times must increase");
+      f.t.push_back(time);
+      f.f.push_back(value);
+    }
+    if (f.t.size() < 2) t->fail("file", f.name + ": needs at least two rows");
+  } else {
+    t->fail("kind", "unknown history '" + kind + "'; use constant, linear, sine, cosine or table");
+  }
+  t->finish();
+  return f;
+}
+
 }  // namespace
 
 void readBoundaries(TableReader& top, Model& m, const std::string& path,
@@ -262,6 +306,13 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
     if ((fix || vx || vy) && (stress || pressure))
       r.failTable("a boundary either drives gridpoints (fix, velocity) or loads edges (stress, pressure); use two tables");
     if (stress && pressure) r.fail("pressure", "give either stress or pressure");
+    int history = -1;
+    if (r.has("history")) {
+      if (!(vx || vy || stress || pressure))
+        r.fail("history", "a fixed gridpoint has no value to vary: a history scales a velocity, stress or pressure");
+      m.timeFunctions.push_back(readHistory(r, path));
+      history = static_cast<int>(m.timeFunctions.size()) - 1;
+    }
 
     if (fix || vx || vy) {
       std::uint8_t bits = 0;
@@ -282,6 +333,10 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
         if (bits & DriveY) g.velocity[i].y = 0.0;
         if (vx) g.velocity[i].x = ux;
         if (vy) g.velocity[i].y = uy;
+        if (history >= 0) {
+          if (vx) m.drivenVelocities.push_back({i, 0, ux, history});
+          if (vy) m.drivenVelocities.push_back({i, 1, uy, history});
+        }
       }
     } else {
       std::array<double, 3> s{}, gx{}, gy{};
@@ -308,6 +363,7 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
           LoadedEdge e;
           e.from = from;
           e.to = to;
+          e.history = history;
           if (tabulated) {
             const Vec2 d = mid - centre;
             const std::array<double, 3> v = stressTable.at(std::atan2(d.y, d.x) * 180.0 / std::numbers::pi, r);

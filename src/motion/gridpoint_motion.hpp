@@ -22,6 +22,9 @@ struct GridpointStepTotals {
 // and length, half to each end (Gridpoints::appliedForce).
 void applyEdgeTractions(Model& model);
 
+// Driven components with a time history take their velocity for the coming half step.
+void applyDrivenVelocities(Model& model, double dt);
+
 // Advances every gridpoint one step: gathers its zone forces in a fixed order, adds gravity and
 // tractions, integrates free components by 1.3-21 and holds driven ones at their velocity.
 GridpointStepTotals integrateGridpoints(Model& model, double dt, double massDamping);

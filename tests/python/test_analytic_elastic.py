@@ -535,3 +535,14 @@ def test_wave_arrival_times():
     assert el.p_wave_arrival_time(distance=50.0, E=10e9, nu=0.25, rho=2500.0) == pytest.approx(50.0 / 2190.890230, rel=1e-9)
     assert el.s_wave_arrival_time(distance=50.0, E=10e9, nu=0.25, rho=2500.0) == pytest.approx(50.0 / 1264.911064, rel=1e-9)
 
+
+@REQ
+def test_s_wave_sine_velocity():
+    # c_s = 1264.911 m/s: over 25 m the delay is 19.7642 ms; a quarter period of 50 Hz (5 ms) later
+    # the velocity is at its crest; before the delay it is zero.
+    delay = 25.0 / 1264.911064
+    v = el.s_wave_sine_velocity(np.array([0.5 * delay, delay + 0.005, delay + 0.01]), distance=25.0, E=10e9,
+                                nu=0.25, rho=2500.0, amplitude=0.01, frequency=50.0)
+    # c_s typed to 10 digits: the delay is off by 1e-12 s, the sine by 2 pi 50 Hz x 1e-12 s x 0.01.
+    assert v == pytest.approx([0.0, 0.01, 0.0], abs=1e-11)
+

@@ -372,3 +372,12 @@ def s_wave_arrival_time(*, distance, E, nu, rho):
     _, G = bulk_shear_from_young(E=E, nu=nu)
     return _arr(distance) / s_wave_speed(G=G, rho=rho)
 
+
+def s_wave_sine_velocity(t, *, distance, E, nu, rho, amplitude, frequency):
+    """Velocity at `distance` from a boundary driven from t = 0 at amplitude sin(2 pi f t), carried
+    by an S-wave without dispersion: amplitude sin(2 pi f (t - distance / c_s)) after the arrival
+    distance / c_s, zero before (s_wave_arrival_time)."""
+    t = _arr(t)
+    delay = s_wave_arrival_time(distance=distance, E=E, nu=nu, rho=rho)
+    return np.where(t >= delay, amplitude * np.sin(2.0 * np.pi * frequency * (t - delay)), 0.0)
+
