@@ -184,8 +184,12 @@ struct Model {
   std::vector<LoadedEdge> loadedEdges;
   std::vector<DrivenVelocity> drivenVelocities;  // only those with a time history
   std::vector<TimeFunction> timeFunctions;
-  // Each deformable block's outline: its boundary gridpoints, counter-clockwise.
-  std::vector<std::pair<int, std::vector<int>>> blockBoundaries;
+  // The outline edges of deformable blocks (outer boundaries and holes), each directed with the
+  // block on its left: gridpoints from -> to.
+  struct BoundaryEdge {
+    int block = -1, from = -1, to = -1;
+  };
+  std::vector<BoundaryEdge> boundaryEdges;
   std::vector<Contact> contacts;
   double deletedSlipDissipation = 0.0;  // J/m, by contacts that no longer exist
   // Joint material per unordered block pair where the scene assigns one; else defaultJoint.

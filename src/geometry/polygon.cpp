@@ -148,4 +148,10 @@ std::optional<std::pair<Polygon, Polygon>> splitConvex(const Polygon& p, Vec2 po
   return std::make_pair(std::move(left), std::move(right));
 }
 
+bool containsPoint(const Polygon& p, Vec2 point) {
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (!(cross(p[(i + 1) % p.size()] - p[i], point - p[i]) > 0.0)) return false;
+  return true;
+}
+
 }  // namespace vdec

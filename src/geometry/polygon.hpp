@@ -21,6 +21,9 @@ double polarSecondMoment(const Polygon& p);
 // or an edge too short to round with the rounding length (length <= 2 d).
 void validateBlockPolygon(const Polygon& p, double roundingLength, const std::string& what);
 
+// Whether the point lies strictly inside the convex, counter-clockwise polygon.
+bool containsPoint(const Polygon& p, Vec2 point);
+
 // Splits a convex polygon along the infinite line through `point` with direction `dir`.
 // Returns nothing when the line does not cross the interior.
 std::optional<std::pair<Polygon, Polygon>> splitConvex(const Polygon& p, Vec2 point, Vec2 dir);

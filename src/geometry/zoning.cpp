@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 
 namespace vdec {
@@ -29,10 +30,6 @@ Mesh crossedGrid(int nx, int ny, Map map) {
       mesh.triangles.push_back({d, a, centre});
     }
   }
-  for (int i = 0; i < nx; ++i) mesh.boundary.push_back(corner(i, 0));
-  for (int j = 0; j < ny; ++j) mesh.boundary.push_back(corner(nx, j));
-  for (int i = nx; i > 0; --i) mesh.boundary.push_back(corner(i, ny));
-  for (int j = ny; j > 0; --j) mesh.boundary.push_back(corner(0, j));
   return mesh;
 }
 
@@ -63,6 +60,18 @@ Mesh crossedAnnulusMesh(const AnnulusSpec& s) {
                                                 : s.angle0 + (s.angle1 - s.angle0) * j / s.circumferential;
     return s.centre + radius[i] * Vec2{std::cos(theta), std::sin(theta)};
   });
+}
+
+std::vector<std::array<int, 2>> boundaryEdges(const Mesh& mesh) {
+  std::map<std::pair<int, int>, int> uses;  // undirected side -> number of triangles
+  for (const auto& t : mesh.triangles)
+    for (int c = 0; c < 3; ++c) ++uses[{std::min(t[c], t[(c + 1) % 3]), std::max(t[c], t[(c + 1) % 3])}];
+  std::vector<std::array<int, 2>> edges;
+  for (const auto& t : mesh.triangles)
+    for (int c = 0; c < 3; ++c)
+      if (uses[{std::min(t[c], t[(c + 1) % 3]), std::max(t[c], t[(c + 1) % 3])}] == 1)
+        edges.push_back({t[c], t[(c + 1) % 3]});
+  return edges;
 }
 
 MeshQuality meshQuality(const Mesh& mesh) {

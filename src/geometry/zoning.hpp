@@ -14,8 +14,32 @@ namespace vdec {
 struct Mesh {
   std::vector<Vec2> nodes;
   std::vector<std::array<int, 3>> triangles;  // counter-clockwise
-  std::vector<int> boundary;                  // counter-clockwise loop of node ids
 };
+
+// The outline of a mesh: every triangle side no other triangle shares, directed as in its
+// triangle (so the outside is on its right). Holes and several loops come out the same way.
+std::vector<std::array<int, 2>> boundaryEdges(const Mesh& mesh);
+
+// The mesh without the triangles whose centroid `inside` holds, and without nodes left unused
+// (node ids renumbered in order).
+template <class Inside>
+Mesh withoutTriangles(const Mesh& mesh, Inside inside) {
+  Mesh out;
+  std::vector<int> renumber(mesh.nodes.size(), -1);
+  for (const auto& t : mesh.triangles) {
+    if (inside((1.0 / 3.0) * (mesh.nodes[t[0]] + mesh.nodes[t[1]] + mesh.nodes[t[2]]))) continue;
+    std::array<int, 3> kept{};
+    for (int c = 0; c < 3; ++c) {
+      if (renumber[t[c]] < 0) {
+        renumber[t[c]] = static_cast<int>(out.nodes.size());
+        out.nodes.push_back(mesh.nodes[t[c]]);
+      }
+      kept[c] = renumber[t[c]];
+    }
+    out.triangles.push_back(kept);
+  }
+  return out;
+}
 
 // A convex quadrilateral (counter-clockwise corners) cut into nx x ny cells along its sides.
 Mesh crossedQuadMesh(const std::array<Vec2, 4>& corners, int nx, int ny);

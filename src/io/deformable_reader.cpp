@@ -75,8 +75,6 @@ std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& v
 void addDeformableBlock(Model& m, const std::string& name, int material, const Mesh& mesh) {
   Blocks& b = m.blocks;
   const int block = b.size();
-  Polygon outline;
-  for (int n : mesh.boundary) outline.push_back(mesh.nodes[n]);
   const double density = m.blockMaterials[material].density;
   double area = 0.0;
   Vec2 moment;
@@ -95,7 +93,7 @@ void addDeformableBlock(Model& m, const std::string& name, int material, const M
   b.inertia.push_back(0.0);
   b.driven.push_back(0);
   double radius = 0.0;
-  for (const Vec2& p : outline) radius = std::max(radius, norm(p - c));
+  for (const Vec2& p : mesh.nodes) radius = std::max(radius, norm(p - c));
   b.boundingRadius.push_back(radius);
   b.initialCentroid.push_back(c);
   b.centroid.push_back(c);
@@ -128,8 +126,7 @@ void addDeformableBlock(Model& m, const std::string& name, int material, const M
     z.sxy.push_back(0.0);
     z.szz.push_back(0.0);
   }
-  m.blockBoundaries.push_back({block, {}});
-  for (int n : mesh.boundary) m.blockBoundaries.back().second.push_back(first + n);
+  for (const auto& [from, to] : boundaryEdges(mesh)) m.boundaryEdges.push_back({block, first + from, first + to});
   const MeshQuality q = meshQuality(mesh);
   if (q.minAngleDegrees < 1.0)
     throw GeometryError("block '" + name + "': zone " + std::to_string(q.worstTriangle) + " is a sliver (smallest angle " +
@@ -354,10 +351,10 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
       if (r.has("stress_gradient_x")) gx = triple(r, "stress_gradient_x");
       if (r.has("stress_gradient_y")) gy = triple(r, "stress_gradient_y");
       int edges = 0;
-      for (const auto& [b, loop] : m.blockBoundaries) {
-        if (b != block) continue;
-        for (std::size_t k = 0; k < loop.size(); ++k) {
-          const int from = loop[k], to = loop[(k + 1) % loop.size()];
+      for (const Model::BoundaryEdge& be : m.boundaryEdges) {
+        if (be.block != block) continue;
+        {
+          const int from = be.from, to = be.to;
           if (!selected[from] || !selected[to]) continue;
           const Vec2 mid = 0.5 * (m.gridpoints.initialPosition[from] + m.gridpoints.initialPosition[to]);
           LoadedEdge e;

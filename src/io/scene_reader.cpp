@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <numbers>
 #include <set>
@@ -330,6 +331,42 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     }
   }
   if (inputs.empty()) top.fail("block", "the scene has no blocks: add [[block]] or [[region]]");
+  // Excavation: rigid blocks whose centroid lies in the region go, and so do the zones of
+  // deformable blocks whose centroid does (the outline then follows the zones left).
+  for (auto [table, prefix] : top.tables("excavation")) {
+    TableReader r(*table, prefix, path);
+    std::function<bool(Vec2)> inside;
+    if (r.has("circle") == r.has("polygon")) r.failTable("give either circle = { centre, radius } or polygon = [...]");
+    if (r.has("circle")) {
+      auto c = r.subtable("circle");
+      if (!c) r.fail("circle", "must be a table { centre = [x, y], radius = R }");
+      const Vec2 centre = c->vec2("centre");
+      const double radius = c->positive("radius");
+      c->finish();
+      inside = [centre, radius](Vec2 p) { return norm(p - centre) < radius; };
+    } else {
+      const Polygon region = r.polygon("polygon");
+      validateBlockPolygon(region, 0.0, r.location());
+      inside = [region](Vec2 p) { return containsPoint(region, p); };
+    }
+    std::size_t removed = 0;
+    std::vector<BlockInput> kept;
+    for (BlockInput& in : inputs) {
+      if (in.mesh) {
+        const std::size_t before = in.mesh->triangles.size();
+        in.mesh = withoutTriangles(*in.mesh, inside);
+        removed += before - in.mesh->triangles.size();
+        if (in.mesh->triangles.empty()) continue;
+      } else if (inside(centroid(in.polygon))) {
+        ++removed;
+        continue;
+      }
+      kept.push_back(std::move(in));
+    }
+    if (removed == 0) r.failTable("removes nothing: no block centroid and no zone centroid lies in it");
+    inputs = std::move(kept);
+    r.finish();
+  }
   for (const BlockInput& in : inputs) {
     if (in.mesh) {
       addDeformableBlock(m, in.name, in.material, *in.mesh);

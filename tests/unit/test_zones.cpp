@@ -51,7 +51,7 @@ TEST(Zoning, CrossedQuadHasFourTrianglesPerCellAndCoversTheBlock) {
   const Mesh mesh = crossedQuadMesh({Vec2{0, 0}, Vec2{2, 0}, Vec2{2, 1}, Vec2{0, 1}}, 4, 2);
   EXPECT_EQ(mesh.triangles.size(), 4u * 4 * 2);
   EXPECT_EQ(mesh.nodes.size(), 5u * 3 + 4 * 2);
-  EXPECT_EQ(mesh.boundary.size(), 2u * (4 + 2));
+  EXPECT_EQ(boundaryEdges(mesh).size(), 2u * (4 + 2));
   double area = 0.0;
   for (const auto& t : mesh.triangles) {
     const double a = 0.5 * cross(mesh.nodes[t[1]] - mesh.nodes[t[0]], mesh.nodes[t[2]] - mesh.nodes[t[0]]);
@@ -124,7 +124,7 @@ TEST(Zones, PatchTestIsExactToRoundOff) {
     EXPECT_NEAR(m.zones.szz[z], szz, 1e-9 * std::abs(szz));
   }
   std::vector<char> boundary(m.gridpoints.size(), 0);
-  for (int i : m.blockBoundaries[0].second) boundary[i] = 1;
+  for (const Model::BoundaryEdge& e : m.boundaryEdges) boundary[e.from] = boundary[e.to] = 1;
   const double scale = std::abs(sxx) * 0.5;  // stress times a zone edge
   int interior = 0;
   for (int i = 0; i < m.gridpoints.size(); ++i) {
@@ -358,4 +358,51 @@ TEST(Zones, ZonedQuadrilateralMustBeConvexAndCounterClockwise) {
   const std::string what = sceneError(clockwise, "z-clockwise");
   EXPECT_NE(what.find("z-clockwise.toml:"), std::string::npos) << what;
   EXPECT_NE(what.find("[block[0]]"), std::string::npos) << what;
+}
+
+TEST(Zones, ExcavationRemovesZonesAndTheOutlineFollowsTheHole) {
+  VDEC_REQUIREMENTS("REQ-ZONE-013");
+  const std::string plate = R"(
+[model]
+rounding = 0.01
+[stop]
+cycles = 1
+[[block_material]]
+name = "rock"
+density = 2500.0
+young = 10e9
+poisson = 0.25
+[[block]]
+name = "plate"
+material = "rock"
+vertices = [[-4.0, -4.0], [4.0, -4.0], [4.0, 4.0], [-4.0, 4.0]]
+zoning = { nx = 16, ny = 16 }
+)";
+  Scene s = sceneFromText(plate + "[[excavation]]\ncircle = { centre = [0.0, 0.0], radius = 1.0 }\n", "excavated");
+  const Model& m = s.model;
+  // Zones with centroids inside r = 1 are gone: fewer than the 4 x 16 x 16 there were, none inside.
+  EXPECT_LT(m.zones.size(), 4 * 16 * 16);
+  double area = 0.0;
+  for (int z = 0; z < m.zones.size(); ++z) {
+    const auto& n = m.zones.gridpoint[z];
+    const Vec2 p0 = m.gridpoints.position[n[0]], p1 = m.gridpoints.position[n[1]], p2 = m.gridpoints.position[n[2]];
+    EXPECT_GE(norm((1.0 / 3.0) * (p0 + p1 + p2)), 1.0);
+    area += 0.5 * cross(p1 - p0, p2 - p0);
+  }
+  EXPECT_LT(area, 64.0 - 2.0);  // at least most of the unit circle's 3.14 m^2 removed
+  // The outline, outer loop and hole together, encloses exactly the zones' area (Green's
+  // theorem over edges directed with the block on their left), and every gridpoint has a zone.
+  double enclosed = 0.0;
+  for (const Model::BoundaryEdge& e : m.boundaryEdges)
+    enclosed += 0.5 * cross(m.gridpoints.position[e.from], m.gridpoints.position[e.to]);
+  EXPECT_NEAR(enclosed, area, 1e-12 * area);
+  EXPECT_GT(m.boundaryEdges.size(), 64u);  // the 64 outer edges and the hole's
+  std::vector<int> zonesAt(m.gridpoints.size(), 0);
+  for (const auto& n : m.zones.gridpoint)
+    for (int g : n) ++zonesAt[g];
+  for (int count : zonesAt) EXPECT_GT(count, 0);
+  // An excavation that removes nothing is a mistake worth a message.
+  EXPECT_NE(sceneError(plate + "[[excavation]]\ncircle = { centre = [9.0, 9.0], radius = 0.5 }\n", "excavate-nothing")
+                .find("[excavation[0]]: removes nothing"),
+            std::string::npos);
 }
