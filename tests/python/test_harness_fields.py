@@ -102,3 +102,10 @@ def test_derived_ratio_of_two_runs():
     with pytest.raises(ExtractError, match="reads run 'fast', which did not run"):
         extract({**table, "inputs": {**table["inputs"], "denominator": {"kind": "run_meta", "path": "run.cycles",
                                                                         "variant": "fast"}}}, this, 0, runs)
+
+
+@REQ
+def test_field_peak_is_the_value_of_largest_magnitude():
+    # syy over the zones: -4, -6, -7 -> -7; sxy: 0.5, 0, 1 -> 1.
+    assert extract({"kind": "field_peak", "of": "zones", "quantity": "syy"}, RESULTS, 0) == -7.0
+    assert extract({"kind": "field_peak", "of": "zones", "quantity": "sxy"}, RESULTS, 0) == 1.0

@@ -11,6 +11,8 @@ displacement_x, displacement_y, ...} (initial positions).
                                                                        with their coordinates as keywords
                                                                        (x, y, r, theta: whichever it takes)
     field_mean  of, quantity [block] [centre] [x] [y] [r] [angle]      mean (area-weighted for zones)
+    field_peak  of, quantity [block] [centre] [x] [y] [r] [angle]      the value of largest magnitude (a
+                                                                       stress concentration's peak)
     derived     function, inputs [params] [component]                 function(**inputs, **params) of the
                                                                        analytic package, inputs being other
                                                                        extract tables: a quantity the run
@@ -125,6 +127,13 @@ def field_mean(results, table):
         area = np.asarray(columns["area"], dtype=float)[mask]
         return float(np.sum(area * values) / np.sum(area))
     return float(np.mean(values))
+
+
+def field_peak(results, table):
+    of, quantity = table["of"], table["quantity"]
+    columns, mask, _, _, _, theta = _selected(results, table)
+    values = _values(columns, of, quantity, theta)[mask]
+    return float(values[np.argmax(np.abs(values))])
 
 
 def derived(results, table, exit_code=None, runs=None):
