@@ -25,7 +25,7 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::UnbalancedRatio, "model.unbalanced_ratio", S::Model, "-", "largest unbalanced force / mean contact force"},
       {Q::LargestUnbalancedForce, "model.largest_unbalanced_force", S::Model, "N/m", "largest unbalanced force of a free block"},
       {Q::KineticEnergy, "model.kinetic_energy", S::Model, "J/m", "kinetic energy (time-centred)"},
-      {Q::StrainEnergy, "model.strain_energy", S::Model, "J/m", "elastic energy in the contacts"},
+      {Q::StrainEnergy, "model.strain_energy", S::Model, "J/m", "elastic energy in the contacts and zones"},
       {Q::EnergyRatio, "model.energy_ratio", S::Model, "-", "(kinetic + strain energy) / largest energy supplied so far"},
       {Q::GridpointDisplacementX, "gridpoint.displacement_x", S::Gridpoint, "m", "x displacement of a deformable block's gridpoint"},
       {Q::GridpointDisplacementY, "gridpoint.displacement_y", S::Gridpoint, "m", "y displacement of a deformable block's gridpoint"},

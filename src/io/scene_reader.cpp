@@ -364,6 +364,7 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
       kept.push_back(std::move(in));
     }
     if (removed == 0) r.failTable("removes nothing: no block centroid and no zone centroid lies in it");
+    if (kept.empty()) r.failTable("removes every block: the scene would be empty");
     inputs = std::move(kept);
     r.finish();
   }
@@ -375,8 +376,11 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     validateBlockPolygon(in.polygon, m.roundingLength, in.where);
     addBlock(m, in);
   }
-  if (m.jointMaterials.empty() && m.blocks.size() > 1)
-    top.fail("joint_material", "at least one [[joint_material]] is required when the scene has more than one block");
+  bool anyRigid = false;
+  for (int b = 0; b < m.blocks.size(); ++b) anyRigid = anyRigid || !m.blocks.deformable[b];
+  if (m.jointMaterials.empty() && (m.blocks.size() > 1 || anyRigid))
+    top.fail("joint_material", "at least one [[joint_material]] is required when the scene has more than one block or a "
+                               "rigid block (the rigid-block time step, 1.3-28, takes the joint stiffness)");
   computeBoundaryGeometry(m);
   for (int b = 0; b < m.blocks.size(); ++b) placeBlockVertices(m, b);
 
@@ -423,6 +427,9 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     h.quantity = info->quantity;
     if (info->subject == HistorySubject::Block) {
       h.block = blockIndex(r, "block", r.string("block"));
+      if (m.blocks.deformable[h.block])
+        r.fail("block", "block '" + m.blocks.name[h.block] + "' is deformable: its motion is its gridpoints'; use "
+                        "gridpoint.* or zone.* quantities with a point");
     } else if (info->subject == HistorySubject::Joint) {
       const auto names = r.strings("blocks");
       if (names.size() != 2) r.fail("blocks", "a joint history names exactly two blocks");

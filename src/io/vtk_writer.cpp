@@ -58,7 +58,8 @@ Grid collect(const Model& m) {
     for (int v = b.firstVertex[k]; v < b.firstVertex[k] + b.vertexCount[k]; ++v) {
       cell.push_back(static_cast<int>(g.points.size()));
       g.points.push_back(m.vertices.position[v]);
-      g.displacement.push_back(b.centroid[k] - b.initialCentroid[k]);
+      // Where the vertex started: the block's first centroid plus the vertex at zero rotation.
+      g.displacement.push_back(m.vertices.position[v] - (b.initialCentroid[k] + m.vertices.localPosition[v]));
       g.velocity.push_back(b.velocity[k] + b.angularVelocity[k] * perp(m.vertices.position[v] - b.centroid[k]));
     }
     g.cells.push_back(cell);

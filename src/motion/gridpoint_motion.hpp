@@ -1,5 +1,5 @@
 #pragma once
-// Law of motion for the gridpoints of deformable blocks (NUREG/CR-5429 1.4-117, 1.3-7 to 1.3-9, with
+// Law of motion for the gridpoints of deformable blocks (NUREG/CR-5429 1.4-117, with
 // inertial and gravitational masses apart for density scaling, 1.3-32 to 1.3-34) and mass-
 // proportional damping (1.3-21).
 #include "core/model.hpp"

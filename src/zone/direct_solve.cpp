@@ -31,7 +31,8 @@ constexpr int kMaxSolves = 6;
 constexpr double kResidualTolerance = 1e-12;
 
 // One linear solve on the current configuration; returns the norm of the residual it solved for
-// and that of the external loads, and adds the largest displacement to `report`.
+// and the scale of the forces (loads or zone forces), and adds the largest displacement to
+// `report`.
 std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
   Gridpoints& g = m.gridpoints;
   Zones& zn = m.zones;
@@ -56,7 +57,7 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
     if (unknown[2 * i] >= 0) f[unknown[2 * i]] += load.x;
     if (unknown[2 * i + 1] >= 0) f[unknown[2 * i + 1]] += load.y;
   }
-  const double externalNorm = f.norm();
+  const Eigen::VectorXd external = f;
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(36 * static_cast<std::size_t>(zn.size()));
   for (int z = 0; z < zn.size(); ++z) {
@@ -138,7 +139,9 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
     g.velocity[i] = {};
     report.largestDisplacement = std::max(report.largestDisplacement, norm(du));
   }
-  return {f.norm(), externalNorm};
+  // The scale of the forces in play: the loads, or the zones' own forces when in-situ stress
+  // alone drives the problem.
+  return {f.norm(), std::max(external.norm(), (f - external).norm())};
 }
 
 }  // namespace
@@ -152,8 +155,9 @@ DirectSolveReport solveStaticDirect(Model& m) {
   // the strains are small) until the residual is at round-off of the loads.
   for (int k = 0; k < kMaxSolves; ++k) {
     ++report.solves;
-    const auto [residual, external] = solveOnce(m, report);
-    if (!(residual > kResidualTolerance * external)) break;
+    const auto [residual, scale] = solveOnce(m, report);
+    report.relativeResidual = scale > 0.0 ? residual / scale : 0.0;
+    if (!(residual > kResidualTolerance * scale)) break;
   }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;

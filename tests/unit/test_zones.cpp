@@ -406,3 +406,21 @@ zoning = { nx = 16, ny = 16 }
                 .find("[excavation[0]]: removes nothing"),
             std::string::npos);
 }
+
+TEST(Zones, SceneChecksAroundDeformableBlocks) {
+  VDEC_REQUIREMENTS("REQ-ZONE-005");
+  // A block history on a deformable block would record its input centroid, not its motion.
+  const std::string blockHistory =
+      quadScene(2, 2, "[[history]]\nname = \"x\"\nquantity = \"block.x\"\nblock = \"patch\"\n");
+  EXPECT_NE(sceneError(blockHistory, "z-block-history").find("is deformable: its motion is its gridpoints'"),
+            std::string::npos);
+  // Excavating everything leaves nothing to run.
+  const std::string everything = quadScene(2, 2, "[[excavation]]\ncircle = { centre = [1.0, 1.0], radius = 10.0 }\n");
+  EXPECT_NE(sceneError(everything, "z-everything").find("removes every block"), std::string::npos);
+  // A rigid block needs a joint material for its time step, named as a scene error.
+  std::string rigid = quadScene(2, 2);
+  rigid.replace(rigid.find("zoning = { nx = 2, ny = 2 }"), 27, "");
+  EXPECT_NE(sceneError(rigid, "z-rigid-alone").find("key 'joint_material': at least one [[joint_material]] is required"),
+            std::string::npos)
+      << sceneError(rigid, "z-rigid-alone");
+}
