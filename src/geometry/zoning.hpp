@@ -56,6 +56,10 @@ struct AnnulusSpec {
 };
 Mesh crossedAnnulusMesh(const AnnulusSpec& spec);
 
+// A polygon (counter-clockwise) zoned into quality triangles by constrained Delaunay refinement
+// (CGAL): smallest angle at least 20.7 degrees, no side longer than maxEdge.
+Mesh delaunayMesh(const std::vector<Vec2>& outline, double maxEdge);
+
 struct MeshQuality {
   double minAngleDegrees = 0.0;   // smallest interior angle of any triangle
   double maxAspectRatio = 0.0;    // largest of longest edge / shortest height

@@ -64,6 +64,17 @@ std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& v
   auto t = r.subtable("zoning");
   if (!t) r.fail("zoning", "must be a table, e.g. zoning = { nx = 8, ny = 4 }");
   const Polygon p = vertices();
+  if (t->has("max_edge")) {
+    // Unstructured: any convex polygon, quality triangles no longer than max_edge.
+    const double maxEdge = t->positive("max_edge");
+    if (t->has("nx") || t->has("ny")) t->fail("max_edge", "give either max_edge (unstructured) or nx and ny (structured)");
+    validateBlockPolygon(p, 0.0, r.location());
+    double perimeter = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) perimeter += norm(p[(i + 1) % p.size()] - p[i]);
+    if (perimeter / maxEdge > 1e5) t->fail("max_edge", "is too small for this block: over 1e5 edges on its outline");
+    t->finish();
+    return delaunayMesh(p, maxEdge);
+  }
   if (p.size() != 4) r.fail("zoning", "structured zoning needs a quadrilateral block (4 vertices), got " + std::to_string(p.size()));
   // Convex and counter-clockwise, like every block (edge lengths do not matter without contacts).
   validateBlockPolygon(p, 0.0, r.location());

@@ -424,3 +424,33 @@ TEST(Zones, SceneChecksAroundDeformableBlocks) {
             std::string::npos)
       << sceneError(rigid, "z-rigid-alone");
 }
+
+TEST(Zoning, DelaunayRefinementGivesQualityTrianglesFillingThePolygon) {
+  VDEC_REQUIREMENTS("REQ-ZONE-001");
+  const std::vector<Vec2> hexagon{{0, 0}, {2, 0}, {3, 1.5}, {2, 3}, {0, 3}, {-1, 1.5}};
+  const double maxEdge = 0.25;
+  const Mesh mesh = delaunayMesh(hexagon, maxEdge);
+  ASSERT_GT(mesh.triangles.size(), 100u);
+  double area = 0.0, longest = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const Vec2 p[3] = {mesh.nodes[t[0]], mesh.nodes[t[1]], mesh.nodes[t[2]]};
+    const double a = 0.5 * cross(p[1] - p[0], p[2] - p[0]);
+    EXPECT_GT(a, 0.0);  // counter-clockwise
+    area += a;
+    for (int c = 0; c < 3; ++c) longest = std::max(longest, norm(p[(c + 1) % 3] - p[c]));
+  }
+  EXPECT_NEAR(area, 9.0, 1e-12);  // the hexagon: 3 x 3 square plus two triangles of 1.5 m^2
+  EXPECT_LE(longest, maxEdge * (1 + 1e-12));
+  // Ruppert's bound for the shape criterion B = 0.125: no angle below 20.7 degrees.
+  EXPECT_GE(meshQuality(mesh).minAngleDegrees, 20.7);
+  // The outline is the hexagon's: every boundary edge lies on one of its sides.
+  for (const auto& [from, to] : boundaryEdges(mesh)) {
+    bool onSide = false;
+    for (std::size_t i = 0; i < hexagon.size(); ++i) {
+      const Vec2 a = hexagon[i], b = hexagon[(i + 1) % hexagon.size()];
+      const Vec2 dir = (1.0 / norm(b - a)) * (b - a);
+      onSide = onSide || (std::abs(cross(dir, mesh.nodes[from] - a)) < 1e-12 && std::abs(cross(dir, mesh.nodes[to] - a)) < 1e-12);
+    }
+    EXPECT_TRUE(onSide);
+  }
+}
