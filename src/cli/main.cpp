@@ -21,6 +21,7 @@ int runScene(const std::string& scenePath, const std::string& outDir, const std:
              bool profile) {
   const auto start = std::chrono::steady_clock::now();
   vdec::Scene scene = vdec::readScene(scenePath, overrides);
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "vdec: warning: %s\n", w.c_str());
   scene.settings.profile = profile;
   scene.settings.progress = true;
   vdec::VtkSeries vtk((std::filesystem::path(outDir) / "vtk").string());

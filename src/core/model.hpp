@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "boundary/time_function.hpp"
+#include "zone/mohr_coulomb.hpp"
 #include "core/vec2.hpp"
 
 namespace vdec {
@@ -19,6 +20,9 @@ struct BlockMaterial {
   double bulk = 0.0;     // K, Pa
   double shear = 0.0;    // G, Pa
   bool elastic() const { return bulk > 0.0 && shear > 0.0; }
+  // Mohr-Coulomb plasticity of the intact rock (1.4.6), when given.
+  bool plastic = false;
+  MohrCoulombProperties mohrCoulomb;
 };
 
 // NUREG/CR-5429 1.4.7: model #1 (point contact, forces), #2 (Coulomb slip), #5 (Coulomb slip
@@ -90,6 +94,7 @@ struct Zones {
   std::vector<int> block;
   std::vector<int> material;
   std::vector<double> sxx, syy, sxy, szz;
+  std::vector<std::uint8_t> plasticState;  // PlasticState bits
   // The forces the zone puts on its three gridpoints this step, gathered per gridpoint in a
   // fixed order so that the result does not depend on how the zone loop is split over threads.
   std::vector<std::array<Vec2, 3>> nodalForce;

@@ -11,6 +11,31 @@
 
 namespace vdec {
 
+void readPlasticity(TableReader& r, BlockMaterial& mat, std::vector<std::string>& warnings) {
+  if (!r.has("friction") && !r.has("cohesion") && !r.has("dilation") && !r.has("tension")) return;
+  if (!mat.elastic()) r.fail("friction", "Mohr-Coulomb plasticity needs the elastic constants too (young and poisson)");
+  const double friction = r.number("friction");
+  if (!(friction > 0.0 && friction < 90.0)) r.fail("friction", "must be in (0, 90) degrees, got " + shown(friction));
+  const double cohesion = r.number("cohesion");
+  if (cohesion < 0.0) r.fail("cohesion", "must be >= 0, got " + shown(cohesion));
+  const double dilation = r.number("dilation", 0.0);
+  if (!(dilation >= 0.0 && dilation < 90.0)) r.fail("dilation", "must be in [0, 90) degrees, got " + shown(dilation));
+  const double phi = radians(friction), psi = radians(dilation);
+  MohrCoulombProperties& mc = mat.mohrCoulomb;
+  mc.nPhi = (1.0 + std::sin(phi)) / (1.0 - std::sin(phi));
+  mc.nPsi = (1.0 + std::sin(psi)) / (1.0 - std::sin(psi));
+  mc.cohesion = cohesion;
+  // Without a cut-off the tensile strength is the apex of the Mohr-Coulomb cone, c / tan(phi).
+  const double apex = cohesion / std::tan(phi);
+  mc.tension = r.has("tension") ? r.nonNegative("tension", 0.0) : apex;
+  if (mc.tension > apex) r.fail("tension", "must not exceed the cone's apex c / tan(phi) = " + shown(apex) + " Pa");
+  mat.plastic = true;
+  // 1.4.6.9: a dilation above the friction angle with no cohesion creates energy.
+  if (dilation > friction && cohesion == 0.0)
+    warnings.push_back(r.location() + ": dilation " + shown(dilation) + " degrees exceeds friction " + shown(friction) +
+                       " degrees with zero cohesion: plastic flow then generates energy (1.4.6.9)");
+}
+
 void readElasticConstants(TableReader& r, BlockMaterial& mat) {
   const bool young = r.has("young") || r.has("poisson");
   const bool bulk = r.has("bulk") || r.has("shear");
@@ -136,6 +161,7 @@ void addDeformableBlock(Model& m, const std::string& name, int material, const M
     z.syy.push_back(0.0);
     z.sxy.push_back(0.0);
     z.szz.push_back(0.0);
+    z.plasticState.push_back(Elastic);
   }
   for (const auto& [from, to] : boundaryEdges(mesh)) m.boundaryEdges.push_back({block, first + from, first + to});
   const MeshQuality q = meshQuality(mesh);

@@ -14,6 +14,9 @@ namespace vdec {
 
 // `young` and `poisson`, or `bulk` and `shear`, or none (a material for rigid blocks only).
 void readElasticConstants(TableReader& r, BlockMaterial& material);
+// Mohr-Coulomb keys of a block material: friction, cohesion, [dilation], [tension]; a warning for
+// dilation above friction without cohesion.
+void readPlasticity(TableReader& r, BlockMaterial& material, std::vector<std::string>& warnings);
 
 // The zoning of a [[block]]: `annulus = {...}` (then the block has no `vertices`), or
 // `zoning = {...}` on a quadrilateral given by `vertices`; nullopt for a rigid block.

@@ -76,7 +76,7 @@ void writeContinuum(nlohmann::json& j, const Model& m) {
     mesh.triangles.push_back({base, base + 1, base + 2});
   }
   j["zones"] = {{"block", zBlock}, {"x0", cx0}, {"y0", cy0}, {"area", area}, {"sxx", zn.sxx},
-                {"syy", zn.syy}, {"sxy", zn.sxy}, {"szz", zn.szz}};
+                {"syy", zn.syy}, {"sxy", zn.sxy}, {"szz", zn.szz}, {"plastic_state", zn.plasticState}};
   nlohmann::json quality = nlohmann::json::object();
   for (const auto& [block, mesh] : meshes) {
     const MeshQuality q = meshQuality(mesh);
@@ -100,7 +100,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                    {"build_type", build::buildType},
                    {"compiler", build::compiler}};
   j["environment"] = environment();
-  j["scene"] = {{"path", scene.path}, {"sha256", scene.sha256}, {"overrides", scene.overrides}, {"title", scene.title}};
+  j["scene"] = {{"path", scene.path}, {"sha256", scene.sha256}, {"overrides", scene.overrides}, {"title", scene.title},
+                {"warnings", scene.warnings}};
   json profile = json::object();
   for (const StageTiming& s : report.profile) profile[s.name] = s.seconds;
   j["run"] = {{"cycles", report.cycles},

@@ -153,8 +153,11 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     // materials are read below; resolve the default afterwards
     for (auto [table, prefix] : top.tables("block_material")) {
       TableReader r(*table, prefix, path);
-      BlockMaterial mat{r.string("name"), r.positive("density")};
+      BlockMaterial mat;
+      mat.name = r.string("name");
+      mat.density = r.positive("density");
       readElasticConstants(r, mat);
+      readPlasticity(r, mat, scene.warnings);
       for (const auto& other : m.blockMaterials)
         if (other.name == mat.name) r.fail("name", "block material '" + mat.name + "' is defined twice");
       m.blockMaterials.push_back(mat);

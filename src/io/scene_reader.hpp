@@ -18,6 +18,7 @@ struct Scene {
   Model model;
   RunSettings settings;
   std::vector<HistorySpec> histories;
+  std::vector<std::string> warnings;   // printed by the command line, kept in results.json
 };
 
 // Throws SceneError (bad file, syntax, key, type or value) or GeometryError (bad polygon).

@@ -139,7 +139,11 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
     sxx += a1 * exx + a2 * eyy;
     syy += a2 * exx + a1 * eyy;
     sxy += 2.0 * mat.shear * exy;
-    const double szz = zn.szz[z] + a2 * (exx + eyy);
+    double szz = zn.szz[z] + a2 * (exx + eyy);
+    if (mat.plastic) {
+      const std::uint8_t now = mohrCoulombReturn(mat.mohrCoulomb, a1, a2, sxx, syy, sxy, szz);
+      zn.plasticState[z] = static_cast<std::uint8_t>(now | ((zn.plasticState[z] & (ShearNow | TensionNow | PlasticInPast)) ? PlasticInPast : 0));
+    }
     zn.sxx[z] = sxx;
     zn.syy[z] = syy;
     zn.sxy[z] = sxy;

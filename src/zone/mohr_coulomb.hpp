@@ -1,0 +1,76 @@
+#pragma once
+// Elastic, perfectly plastic Mohr-Coulomb law for zones with non-associated flow and a tension
+// cut-off (NUREG/CR-5429 1.4.6; the return of MODEL-EQUATIONS.md, FLAC's convention: tension
+// positive, principal stresses s1 <= s2 <= s3). The three principal stresses include szz: the
+// reference orders the in-plane two only; here szz takes part, so that a zone whose szz is the
+// smallest or largest principal stress fails on the right pair.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace vdec {
+
+struct MohrCoulombProperties {
+  double nPhi = 1.0, nPsi = 1.0;  // (1 + sin x) / (1 - sin x) of friction and dilation
+  double cohesion = 0.0;          // Pa
+  double tension = 0.0;           // tensile strength (cut-off), Pa
+};
+
+// Plastic state of a zone this step.
+enum PlasticState : std::uint8_t { Elastic = 0, ShearNow = 1, TensionNow = 2, PlasticInPast = 4 };
+
+// Corrects the trial stress (sxx, syy, sxy, szz) onto the yield surface; a1 = K + 4G/3,
+// a2 = K - 2G/3. Returns ShearNow, TensionNow or Elastic.
+inline std::uint8_t mohrCoulombReturn(const MohrCoulombProperties& mc, double a1, double a2, double& sxx, double& syy,
+                                      double& sxy, double& szz) {
+  // In-plane principal stresses sa <= sb about the in-plane centre c, radius r.
+  const double c = 0.5 * (sxx + syy), dx = 0.5 * (sxx - syy);
+  const double r = std::sqrt(dx * dx + sxy * sxy);
+  double p[3] = {c - r, c + r, szz};  // a, b, z
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&](int i, int j) { return p[i] < p[j]; });
+  const double s1 = p[order[0]], s3 = p[order[2]];
+  const double sqrtNPhi = std::sqrt(mc.nPhi);
+  const double fs = s1 - s3 * mc.nPhi + 2.0 * mc.cohesion * sqrtNPhi;
+  const double ft = mc.tension - s3;
+  if (fs >= 0.0 && ft >= 0.0) return Elastic;
+  // Which surface: h = 0 is the diagonal between the shear and tension yield lines in the
+  // (s1, s3) plane (FLAC); tension only where the cut-off is itself violated.
+  const double alphaP = std::sqrt(1.0 + mc.nPhi * mc.nPhi) + mc.nPhi;
+  const double sigmaP = mc.tension * mc.nPhi - 2.0 * mc.cohesion * sqrtNPhi;
+  const double h = s3 - mc.tension + alphaP * (s1 - sigmaP);
+  double d[3];  // corrections to (s1, s2, s3)
+  std::uint8_t state;
+  if (ft < 0.0 && h > 0.0) {
+    // Tension: flow g = -s3; the correction lambda (a2, a2, a1) with lambda = ft / a1.
+    const double lambda = ft / a1;
+    d[0] = lambda * a2;
+    d[1] = lambda * a2;
+    d[2] = lambda * a1;
+    state = TensionNow;
+  } else {
+    // Shear: flow g = s1 - s3 N_psi.
+    const double lambda = fs / ((a1 - a2 * mc.nPsi) - (a2 - a1 * mc.nPsi) * mc.nPhi);
+    d[0] = -lambda * (a1 - a2 * mc.nPsi);
+    d[1] = -lambda * a2 * (1.0 - mc.nPsi);
+    d[2] = -lambda * (a2 - a1 * mc.nPsi);
+    state = ShearNow;
+  }
+  for (int k = 0; k < 3; ++k) p[order[k]] += d[k];
+  // Back to x, y: the principal directions are kept (the correction is coaxial).
+  const double c2 = 0.5 * (p[0] + p[1]), r2 = 0.5 * (p[1] - p[0]);
+  if (r > 0.0) {
+    const double scale = r2 / r;
+    sxx = c2 + scale * dx;
+    syy = c2 - scale * dx;
+    sxy = scale * sxy;
+  } else {
+    sxx = c2 + r2;
+    syy = c2 - r2;
+    sxy = 0.0;
+  }
+  szz = p[2];
+  return state;
+}
+
+}  // namespace vdec
