@@ -109,3 +109,13 @@ def test_field_peak_is_the_value_of_largest_magnitude():
     # syy over the zones: -4, -6, -7 -> -7; sxy: 0.5, 0, 1 -> 1.
     assert extract({"kind": "field_peak", "of": "zones", "quantity": "syy"}, RESULTS, 0) == -7.0
     assert extract({"kind": "field_peak", "of": "zones", "quantity": "sxy"}, RESULTS, 0) == 1.0
+
+
+@REQ
+def test_field_extent_is_the_reach_of_the_nonzero_samples():
+    # Zones at r = 1, 2, 3 with plastic states 4, 1, 0: the plastic zone reaches r = 2.
+    results = {**RESULTS, "zones": {**RESULTS["zones"], "plastic_state": [4, 1, 0]}}
+    assert extract({"kind": "field_extent", "of": "zones", "quantity": "plastic"}, results, 0) == pytest.approx(2.0)
+    with pytest.raises(ExtractError, match="nonzero plastic"):
+        extract({"kind": "field_extent", "of": "zones", "quantity": "plastic"},
+                {**RESULTS, "zones": {**RESULTS["zones"], "plastic_state": [0, 0, 0]}}, 0)

@@ -237,6 +237,7 @@ KINDS = {
     "field": Kind(fields.field, ("of", "quantity"), fields.SELECTION_KEYS + ("abscissa",), True),
     "field_mean": Kind(fields.field_mean, ("of", "quantity"), fields.SELECTION_KEYS, False),
     "field_peak": Kind(fields.field_peak, ("of", "quantity"), fields.SELECTION_KEYS, False),
+    "field_extent": Kind(fields.field_extent, ("of", "quantity"), fields.SELECTION_KEYS, False),
     "derived": Kind(None, ("function", "inputs"), ("params", "component"), False),
 }
 

@@ -13,6 +13,10 @@ displacement_x, displacement_y, ...} (initial positions).
     field_mean  of, quantity [block] [centre] [x] [y] [r] [angle]      mean (area-weighted for zones)
     field_peak  of, quantity [block] [centre] [x] [y] [r] [angle]      the value of largest magnitude (a
                                                                        stress concentration's peak)
+    field_extent of, quantity [block] [centre] [x] [y] [r] [angle]     the largest radius (about centre) of
+                                                                       the samples where the quantity is not
+                                                                       zero: e.g. of quantity "plastic", the
+                                                                       plastic zone's reach
     derived     function, inputs [params] [component]                 function(**inputs, **params) of the
                                                                        analytic package, inputs being other
                                                                        extract tables: a quantity the run
@@ -40,7 +44,7 @@ def ratio(*, numerator, denominator):
 # Arithmetic a derived extract may use besides the analytic package's inversion formulas.
 BUILTINS = {"ratio": ratio}
 
-ZONE_QUANTITIES = ("sxx", "syy", "sxy", "szz", "srr", "stt", "srt")
+ZONE_QUANTITIES = ("sxx", "syy", "sxy", "szz", "srr", "stt", "srt", "plastic")
 GRIDPOINT_QUANTITIES = ("ux", "uy", "ur", "ut")
 POLAR = ("srr", "stt", "srt", "ur", "ut")
 SELECTION_KEYS = ("block", "centre", "x", "y", "r", "angle")
@@ -92,6 +96,8 @@ def _values(columns, of, quantity, theta):
             raise ExtractError(f"zones have no quantity '{quantity}' (known: {', '.join(ZONE_QUANTITIES)})")
         if quantity in ("sxx", "syy", "sxy", "szz"):
             return np.asarray(columns[quantity], dtype=float)
+        if quantity == "plastic":  # 1 where the zone has yielded, now or in the past
+            return (np.asarray(columns.get("plastic_state", np.zeros(theta.shape)), dtype=float) != 0).astype(float)
         sxx, syy, sxy = (np.asarray(columns[k], dtype=float) for k in ("sxx", "syy", "sxy"))
         if quantity == "srr":
             return sxx * c * c + syy * s * s + 2.0 * sxy * s * c
@@ -134,6 +140,17 @@ def field_peak(results, table):
     columns, mask, _, _, _, theta = _selected(results, table)
     values = _values(columns, of, quantity, theta)[mask]
     return float(values[np.argmax(np.abs(values))])
+
+
+def field_extent(results, table):
+    from vdec_verify.extract import ExtractError
+    of, quantity = table["of"], table["quantity"]
+    columns, mask, _, _, r, theta = _selected(results, table)
+    values = _values(columns, of, quantity, theta)
+    where = mask & (values != 0.0)
+    if not where.any():
+        raise ExtractError(f"no {of} in the selection has a nonzero {quantity}")
+    return float(np.max(r[where]))
 
 
 def derived(results, table, exit_code=None, runs=None):
