@@ -52,6 +52,11 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     if (settings_.staticSolve) {
       if (hasRigidBlocks_)
         throw SceneError("solver.static_solve: the direct solve covers deformable blocks only; this scene has rigid blocks");
+      for (const BlockMaterial& mat : model_.blockMaterials)
+        if (mat.plastic)
+          throw SceneError("solver.static_solve: the direct solve is elastic, and block material '" + mat.name +
+                           "' is Mohr-Coulomb: its answer could lie far beyond yield; relax the plastic problem "
+                           "with explicit cycles instead");
       staticSolveSeconds_ = solveStaticDirect(model_).seconds;
     }
     if (settings_.densityScaling) {

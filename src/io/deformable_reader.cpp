@@ -13,7 +13,9 @@ namespace vdec {
 
 void readPlasticity(TableReader& r, BlockMaterial& mat, std::vector<std::string>& warnings) {
   if (!r.has("friction") && !r.has("cohesion") && !r.has("dilation") && !r.has("tension")) return;
-  if (!mat.elastic()) r.fail("friction", "Mohr-Coulomb plasticity needs the elastic constants too (young and poisson)");
+  if (!mat.elastic())
+    r.fail(r.has("friction") ? "friction" : r.has("cohesion") ? "cohesion" : r.has("dilation") ? "dilation" : "tension",
+           "Mohr-Coulomb plasticity needs the elastic constants too (young and poisson, or bulk and shear)");
   const double friction = r.number("friction");
   if (!(friction > 0.0 && friction < 90.0)) r.fail("friction", "must be in (0, 90) degrees, got " + shown(friction));
   const double cohesion = r.number("cohesion");

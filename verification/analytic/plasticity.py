@@ -28,3 +28,140 @@ def biaxial_peak_stress(*, confining_pressure, cohesion, friction_deg):
     """
     n = n_phi(friction_deg=friction_deg)
     return -np.asarray(confining_pressure, dtype=float) * n - 2.0 * np.asarray(cohesion, dtype=float) * np.sqrt(n)
+
+
+def _check_young_poisson(E, nu):
+    if not E > 0.0:
+        raise ValueError(f"E = {E}: Young's modulus must be positive")
+    if not -1.0 < nu < 0.5:
+        raise ValueError(f"nu = {nu}: Poisson's ratio must lie in (-1, 1/2) for a stable isotropic solid")
+
+
+def salencon_tunnel(*, r, a, p0, pi, E, nu, cohesion, friction_deg, dilation_deg):
+    """Stresses and radial displacement around a circular tunnel (radius a) in an infinite,
+    elastic, perfectly plastic Mohr-Coulomb medium under plane strain, hydrostatic in-situ stress
+    p0 and internal support pressure pi (both compressive pressures, positive), with the
+    non-associated flow rule of dilation angle psi (0 <= psi <= phi).
+
+    Sources: J. Salencon, "Contraction quasi-statique d'une cavite a symetrie spherique ou
+    cylindrique dans un milieu elastoplastique", Annales des Ponts et Chaussees 4 (1969) 231-236;
+    restated (same notation as below, K_p = N_phi, q = sigma_c, K_ps = N_psi) in Itasca's FLAC and
+    3DEC verification problem "Cylindrical hole in an infinite Mohr-Coulomb medium"; the
+    displacement with dilation also follows C. Carranza-Torres and C. Fairhurst, "The elasto-plastic
+    response of underground excavations in rock masses that satisfy the Hoek-Brown failure
+    criterion", Int. J. Rock Mech. Min. Sci. 36 (1999) 777-809 (their Mohr-Coulomb special case).
+    The displacement is re-derived below and checked in the tests.
+
+    Inside the derivation stresses are COMPRESSION POSITIVE (sigma_r, sigma_t) and u is the
+    displacement INWARD; the returned values are converted (see Returns). With
+        N_phi = (1 + sin phi) / (1 - sin phi),  N_psi = (1 + sin psi) / (1 - sin psi),
+        sigma_c = 2 c sqrt(N_phi)  (unconfined strength),  A = sigma_c / (N_phi - 1),
+    the yield condition in the plastic zone is sigma_t = N_phi sigma_r + sigma_c (sigma_t the
+    major, sigma_r the minor principal stress; the out-of-plane stress is taken as intermediate).
+
+    Onset of yield: the wall yields when pi < p_crit = (2 p0 - sigma_c) / (1 + N_phi).
+
+    Plastic radius (R_p = a when pi >= p_crit):
+        R_p = a [ 2 (p0 (N_phi - 1) + sigma_c) / ((1 + N_phi) ((N_phi - 1) pi + sigma_c)) ]^(1/(N_phi - 1))
+
+    Plastic zone, a <= r <= R_p (equilibrium with the yield condition, sigma_r(a) = pi):
+        sigma_r = -A + (pi + A) (r/a)^(N_phi - 1)
+        sigma_t = -A + N_phi (pi + A) (r/a)^(N_phi - 1)
+
+    Elastic zone, r >= R_p (Lame, sigma_r(R_p) = sigma_re, sigma -> p0 far away):
+        sigma_re = (2 p0 - sigma_c) / (1 + N_phi)   (= p_crit)
+        sigma_r = p0 - (p0 - sigma_re) (R_p/r)^2,  sigma_t = p0 + (p0 - sigma_re) (R_p/r)^2
+        u = (p0 - sigma_re) R_p^2 / (2 G r)
+
+    Plastic-zone displacement. Strains measured from the in-situ state, extension positive:
+    e_r = du_out/dr, e_t = u_out/r (u_out = -u). Elastic strains from plane-strain Hooke with the
+    stress change from the in-situ state (tension positive ds = p0 - sigma):
+        2 G e_r^e = (1 - nu) ds_r - nu ds_t,   2 G e_t^e = (1 - nu) ds_t - nu ds_r,
+    the out-of-plane plastic strain being zero (sigma_z intermediate), so e_z^e = 0 too. The flow
+    rule of the potential g = sigma_t - N_psi sigma_r gives e_r^p + N_psi e_t^p = 0 (integrated
+    in total strains, as the ratio is fixed). Then
+        du_out/dr + N_psi u_out/r = e_r^e + N_psi e_t^e,
+    a linear first-order equation whose right side is a constant plus a multiple of
+    (r/a)^(N_phi - 1); solved with u continuous at R_p, and with
+    sigma_re + A = (pi + A) (R_p/a)^(N_phi - 1) = 2 (p0 + A) / (1 + N_phi):
+        2 G u / r = -(1 - 2 nu) (p0 + A)
+                    + (1 - nu) (N_phi^2 - 1) / (N_phi + N_psi) (pi + A) (R_p/a)^(N_phi - 1) (R_p/r)^(N_psi + 1)
+                    + [ (1 - nu) (N_phi N_psi + 1) / (N_phi + N_psi) - nu ] (pi + A) (r/a)^(N_phi - 1)
+    (u inward), which is the FLAC/Salencon expression; at r = R_p it equals the elastic-zone
+    (p0 - sigma_re) R_p / (2 G).
+
+    Valid for 0 <= pi <= (2 N_phi p0 + sigma_c) / (1 + N_phi) (beyond that the wall fails with the
+    radial stress as the major one, a cavity expansion not covered here), (N_phi - 1) pi +
+    sigma_c > 0 (a finite plastic zone) and r >= a. Displacements are those caused by the
+    unloading from p0 to pi (zero in the in-situ state).
+
+    Parameters: r (m, array), a (m), p0, pi (Pa, compression positive), E (Pa), nu, cohesion (Pa),
+    friction_deg, dilation_deg (degrees).
+
+    Returns a dict:
+        srr, stt: radial and tangential stress, TENSION POSITIVE (so srr = -sigma_r, negative in
+            compression), arrays shaped like r;
+        ur: radial displacement, positive OUTWARD (negative for convergence), array;
+        plastic_radius: R_p (m), equal to a when the rock stays elastic;
+        wall_displacement: ur at r = a (m, outward positive).
+    """
+    r = np.asarray(r, dtype=float)
+    a, p0, pi = float(a), float(p0), float(pi)
+    E, nu, c = float(E), float(nu), float(cohesion)
+    phi_deg, psi_deg = float(friction_deg), float(dilation_deg)
+    _check_young_poisson(E, nu)
+    if not a > 0.0:
+        raise ValueError(f"a = {a}: the tunnel radius must be positive")
+    if np.any(~(r >= a)):
+        raise ValueError("r must lie at or outside the tunnel wall (r >= a)")
+    if not p0 > 0.0:
+        raise ValueError(f"p0 = {p0}: the in-situ stress must be a positive (compressive) pressure")
+    if not pi >= 0.0:
+        raise ValueError(f"pi = {pi}: the support pressure must not be negative")
+    if not c >= 0.0:
+        raise ValueError(f"cohesion = {c}: must not be negative")
+    if not 0.0 <= psi_deg <= phi_deg:
+        raise ValueError(f"dilation {psi_deg} deg must lie in [0, friction = {phi_deg} deg]")
+    n = float(n_phi(friction_deg=phi_deg))
+    s_psi = math.sin(math.radians(psi_deg))
+    n_psi = (1.0 + s_psi) / (1.0 - s_psi)
+    sigma_c = 2.0 * c * math.sqrt(n)
+    if not (n - 1.0) * pi + sigma_c > 0.0:
+        raise ValueError("no cohesion and no support pressure: the plastic zone would be unbounded")
+    if pi > (2.0 * n * p0 + sigma_c) / (1.0 + n):
+        raise ValueError(f"pi = {pi}: above (2 N_phi p0 + sigma_c) / (1 + N_phi) the wall fails in "
+                         "expansion, which this solution does not cover")
+    G = E / (2.0 * (1.0 + nu))
+    A = sigma_c / (n - 1.0)
+    p_crit = (2.0 * p0 - sigma_c) / (1.0 + n)
+
+    if pi >= p_crit:
+        # Elastic throughout: Lame's hole in an infinite medium, radial stress pi at the wall.
+        rp, sigma_re = a, pi
+    else:
+        rp = a * (2.0 * (p0 * (n - 1.0) + sigma_c) / ((1.0 + n) * ((n - 1.0) * pi + sigma_c))) ** (1.0 / (n - 1.0))
+        sigma_re = p_crit
+
+    def displacement_inward(x):
+        x = np.asarray(x, dtype=float)
+        elastic = (p0 - sigma_re) * rp * rp / (2.0 * G * x)
+        rho = (x / a) ** (n - 1.0)
+        q = (1.0 - nu) * (n * n_psi + 1.0) / (n + n_psi) - nu
+        plastic = x / (2.0 * G) * (
+            -(1.0 - 2.0 * nu) * (p0 + A)
+            + (1.0 - nu) * (n * n - 1.0) / (n + n_psi) * (pi + A) * (rp / a) ** (n - 1.0) * (rp / x) ** (n_psi + 1.0)
+            + q * (pi + A) * rho)
+        return np.where(x < rp, plastic, elastic)
+
+    in_plastic = r < rp
+    rho = (r / a) ** (n - 1.0)
+    ratio2 = (rp / r) ** 2
+    sigma_r = np.where(in_plastic, -A + (pi + A) * rho, p0 - (p0 - sigma_re) * ratio2)
+    sigma_t = np.where(in_plastic, -A + n * (pi + A) * rho, p0 + (p0 - sigma_re) * ratio2)
+    return {
+        "srr": -sigma_r,
+        "stt": -sigma_t,
+        "ur": -displacement_inward(r),
+        "plastic_radius": float(rp),
+        "wall_displacement": float(-displacement_inward(a)),
+    }
