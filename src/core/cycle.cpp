@@ -132,7 +132,9 @@ void Cycle::buildStages() {
     // The first step starts from the given configuration and stress: no motion has happened yet
     // for the initial velocities, v(-dt/2), to have strained the zones.
     stages_.push_back({"zone-forces", [this] {
-                         step_.strainEnergy += computeZoneForces(model_, model_.cycle == 0 ? 0.0 : dt_).strainEnergy;
+                         const ZoneStepTotals t = computeZoneForces(model_, model_.cycle == 0 ? 0.0 : dt_);
+                         step_.strainEnergy += t.strainEnergy;
+                         energy_.plasticDissipation += t.plasticDissipation;
                        }});
     if (!model_.loadedEdges.empty()) stages_.push_back({"boundary-tractions", [this] { applyEdgeTractions(model_); }});
     if (!model_.drivenVelocities.empty())

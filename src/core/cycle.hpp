@@ -40,6 +40,7 @@ struct EnergyReport {
   double strain = 0.0;             // at the end
   double slipDissipation = 0.0;    // by all contacts, existing and deleted
   double jointRelease = 0.0;       // elastic energy joints gave up without work (breakage, length)
+  double plasticDissipation = 0.0; // by Mohr-Coulomb zones
   double dampingDissipation = 0.0; // by mass damping
   double largestExcess = 0.0;      // max over the run of (kinetic + strain - supplied) / largest supplied
 };

@@ -123,6 +123,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                  {"strain", report.energy.strain},
                  {"slip_dissipation", report.energy.slipDissipation},
                  {"joint_release", report.energy.jointRelease},
+                 {"plastic_dissipation", report.energy.plasticDissipation},
                  {"damping_dissipation", report.energy.dampingDissipation},
                  {"largest_excess", report.energy.largestExcess}};
   json histories = json::object();

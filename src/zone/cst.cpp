@@ -80,7 +80,10 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
   const int count = zn.size();
   bool inverted = false;
   int firstInverted = count;
-  const double energy = deterministicSum(count, [&](int z) {
+  struct Sums {
+    double strain = 0.0, plastic = 0.0;
+  };
+  const Sums sums = deterministicReduce<Sums>(count, [&](int z, Sums& acc) {
     const auto& n = zn.gridpoint[z];
     const Vec2 p0 = g.position[n[0]], p1 = g.position[n[1]], p2 = g.position[n[2]];
     const double twiceArea = cross(p1 - p0, p2 - p0);
@@ -90,7 +93,7 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
         inverted = true;
         firstInverted = std::min(firstInverted, z);
       }
-      return 0.0;
+      return;
     }
     const Vec2 v[3] = {g.velocity[n[0]], g.velocity[n[1]], g.velocity[n[2]]};
     // The increment v dt took the zone from x - v dt to x; its gradient is formed on the
@@ -104,7 +107,7 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
         inverted = true;
         firstInverted = std::min(firstInverted, z);
       }
-      return 0.0;
+      return;
     }
     const double inv = 1.0 / halfStepArea;
     // Gradients of the linear shape functions; Wilkins' contour integral gives the same.
@@ -140,8 +143,14 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
     syy += a2 * exx + a1 * eyy;
     sxy += 2.0 * mat.shear * exy;
     double szz = zn.szz[z] + a2 * (exx + eyy);
+    const double area = 0.5 * twiceArea;
     if (mat.plastic) {
+      // The plastic strain of the return is C^-1 (trial - returned) and the stress over it is on
+      // average (trial + returned) / 2, so the work it absorbs is W(trial) - W(returned) for the
+      // quadratic elastic energy W: exact, and no further state is needed.
+      const double trialEnergy = elasticEnergyDensity(sxx, syy, sxy, szz, mat.bulk, mat.shear);
       const std::uint8_t now = mohrCoulombReturn(mat.mohrCoulomb, a1, a2, sxx, syy, sxy, szz);
+      if (now != Elastic) acc.plastic += area * (trialEnergy - elasticEnergyDensity(sxx, syy, sxy, szz, mat.bulk, mat.shear));
       zn.plasticState[z] = static_cast<std::uint8_t>(now | ((zn.plasticState[z] & (ShearNow | TensionNow | PlasticInPast)) ? PlasticInPast : 0));
     }
     zn.sxx[z] = sxx;
@@ -154,8 +163,10 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
     const double cy[3] = {0.5 * (p2.x - p1.x), 0.5 * (p0.x - p2.x), 0.5 * (p1.x - p0.x)};
     for (int c = 0; c < 3; ++c)
       zn.nodalForce[z][c] = {-(sxx * cx[c] + sxy * cy[c]), -(sxy * cx[c] + syy * cy[c])};
-    const double area = 0.5 * twiceArea;
-    return area * elasticEnergyDensity(sxx, syy, sxy, szz, mat.bulk, mat.shear);
+    acc.strain += area * elasticEnergyDensity(sxx, syy, sxy, szz, mat.bulk, mat.shear);
+  }, [](Sums& total, const Sums& part) {
+    total.strain += part.strain;
+    total.plastic += part.plastic;
   });
   if (inverted) {
     std::ostringstream s;
@@ -164,7 +175,7 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
       << "that no joint or contact stiffness far above the zones' shortens the stable step";
     throw InstabilityError(s.str());
   }
-  return {energy};
+  return {sums.strain, sums.plastic};
 }
 
 }  // namespace vdec

@@ -8,7 +8,8 @@
 namespace vdec {
 
 struct ZoneStepTotals {
-  double strainEnergy = 0.0;  // J/m, sum over zones of the elastic energy density times area
+  double strainEnergy = 0.0;        // J/m, sum over zones of the elastic energy density times area
+  double plasticDissipation = 0.0;  // J/m this step: the elastic energy the plastic return removed
 };
 
 // One step: updates every zone's stress from the velocities of the half step just ended and
