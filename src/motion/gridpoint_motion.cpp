@@ -36,13 +36,15 @@ GridpointStepTotals integrateGridpoints(Model& m, double dt, double alpha) {
   const double lose = 1.0 - 0.5 * alpha * dt, keep = 1.0 / (1.0 + 0.5 * alpha * dt);
   const Vec2 gravity = m.gravity;
   auto step = [&](int i, GridpointStepTotals& t) {
-    Vec2 zoneForce;
-    double zoneMagnitude = 0.0;
+    Vec2 zoneForce, absolute;
     for (int k = gz.start[i]; k < gz.start[i + 1]; ++k) {
       const Vec2 f = zn.nodalForce[gz.slot[k] / 3][gz.slot[k] % 3];
       zoneForce += f;
-      zoneMagnitude += norm(f);
+      absolute += Vec2{std::abs(f.x), std::abs(f.y)};
     }
+    // The scale of the forces the zones put on the gridpoint, for the unbalanced-force ratio:
+    // the sums of the components' magnitudes, one square root per gridpoint.
+    const double zoneMagnitude = norm(absolute);
     const Vec2 body = g.gravityMass[i] * gravity + g.appliedForce[i];
     const Vec2 load = zoneForce + body;
     const Vec2 v0 = g.velocity[i];

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -74,25 +75,40 @@ double zoneTimeStep(const Model& m) {
   return dt;
 }
 
+namespace {
+
+// What the zone loop needs of a material, with its divisions done once.
+struct ZoneLaw {
+  double a1, a2, twoG, halfInverseBulk, quarterInverseShear;
+  const BlockMaterial* material;
+};
+
+}  // namespace
+
 ZoneStepTotals computeZoneForces(Model& m, double dt) {
+  std::vector<ZoneLaw> laws;
+  for (const BlockMaterial& mat : m.blockMaterials)
+    laws.push_back({mat.bulk + 4.0 * mat.shear / 3.0, mat.bulk - 2.0 * mat.shear / 3.0, 2.0 * mat.shear,
+                    mat.bulk > 0.0 ? 0.5 / mat.bulk : 0.0, mat.shear > 0.0 ? 0.25 / mat.shear : 0.0, &mat});
+  // p^2 / 2K + s:s / 4G, as elasticEnergyDensity, with the law's reciprocals.
+  auto energyDensity = [](const ZoneLaw& law, double sxx, double syy, double sxy, double szz) {
+    const double p = (sxx + syy + szz) * (1.0 / 3.0);
+    const double dx = sxx - p, dy = syy - p, dz = szz - p;
+    return p * p * law.halfInverseBulk + (dx * dx + dy * dy + dz * dz + 2.0 * sxy * sxy) * law.quarterInverseShear;
+  };
   Zones& zn = m.zones;
   const Gridpoints& g = m.gridpoints;
   const int count = zn.size();
-  bool inverted = false;
-  int firstInverted = count;
   struct Sums {
     double strain = 0.0, plastic = 0.0;
+    int firstInverted = std::numeric_limits<int>::max();  // an inside-out zone, if any
   };
   const Sums sums = deterministicReduce<Sums>(count, [&](int z, Sums& acc) {
     const auto& n = zn.gridpoint[z];
     const Vec2 p0 = g.position[n[0]], p1 = g.position[n[1]], p2 = g.position[n[2]];
     const double twiceArea = cross(p1 - p0, p2 - p0);
     if (!(twiceArea > 0.0)) {
-#pragma omp critical
-      {
-        inverted = true;
-        firstInverted = std::min(firstInverted, z);
-      }
+      acc.firstInverted = std::min(acc.firstInverted, z);
       return;
     }
     const Vec2 v[3] = {g.velocity[n[0]], g.velocity[n[1]], g.velocity[n[2]]};
@@ -102,11 +118,7 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
     const Vec2 m0 = p0 - 0.5 * dt * v[0], m1 = p1 - 0.5 * dt * v[1], m2 = p2 - 0.5 * dt * v[2];
     const double halfStepArea = cross(m1 - m0, m2 - m0);
     if (!(halfStepArea > 0.0)) {
-#pragma omp critical
-      {
-        inverted = true;
-        firstInverted = std::min(firstInverted, z);
-      }
+      acc.firstInverted = std::min(acc.firstInverted, z);
       return;
     }
     const double inv = 1.0 / halfStepArea;
@@ -120,7 +132,8 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
       dvydx += v[c].y * bx[c];
       dvydy += v[c].y * by[c];
     }
-    const BlockMaterial& mat = m.blockMaterials[zn.material[z]];
+    const ZoneLaw& law = laws[zn.material[z]];
+    const BlockMaterial& mat = *law.material;
     double sxx = zn.sxx[z], syy = zn.syy[z], sxy = zn.sxy[z];
     // Rotation of the stress with the zone (1.4-114): by the spin increment phi as the exactly
     // orthogonal rotation (I - W/2)^-1 (I + W/2), angle 2 atan(phi/2) (Hughes-Winget); with the
@@ -138,19 +151,19 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
     }
     // Plane-strain elasticity (Hooke, 1.4-105, as the law M of 1.4-115): a1 = K + 4G/3, a2 = K - 2G/3.
     const double exx = dvxdx * dt, eyy = dvydy * dt, exy = 0.5 * (dvxdy + dvydx) * dt;
-    const double a1 = mat.bulk + 4.0 * mat.shear / 3.0, a2 = mat.bulk - 2.0 * mat.shear / 3.0;
+    const double a1 = law.a1, a2 = law.a2;
     sxx += a1 * exx + a2 * eyy;
     syy += a2 * exx + a1 * eyy;
-    sxy += 2.0 * mat.shear * exy;
+    sxy += law.twoG * exy;
     double szz = zn.szz[z] + a2 * (exx + eyy);
     const double area = 0.5 * twiceArea;
     if (mat.plastic) {
       // The plastic strain of the return is C^-1 (trial - returned) and the stress over it is on
       // average (trial + returned) / 2, so the work it absorbs is W(trial) - W(returned) for the
       // quadratic elastic energy W: exact, and no further state is needed.
-      const double trialEnergy = elasticEnergyDensity(sxx, syy, sxy, szz, mat.bulk, mat.shear);
+      const double trialEnergy = energyDensity(law, sxx, syy, sxy, szz);
       const std::uint8_t now = mohrCoulombReturn(mat.mohrCoulomb, a1, a2, sxx, syy, sxy, szz);
-      if (now != Elastic) acc.plastic += area * (trialEnergy - elasticEnergyDensity(sxx, syy, sxy, szz, mat.bulk, mat.shear));
+      if (now != Elastic) acc.plastic += area * (trialEnergy - energyDensity(law, sxx, syy, sxy, szz));
       zn.plasticState[z] = static_cast<std::uint8_t>(now | ((zn.plasticState[z] & (ShearNow | TensionNow | PlasticInPast)) ? PlasticInPast : 0));
     }
     zn.sxx[z] = sxx;
@@ -163,11 +176,14 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
     const double cy[3] = {0.5 * (p2.x - p1.x), 0.5 * (p0.x - p2.x), 0.5 * (p1.x - p0.x)};
     for (int c = 0; c < 3; ++c)
       zn.nodalForce[z][c] = {-(sxx * cx[c] + sxy * cy[c]), -(sxy * cx[c] + syy * cy[c])};
-    acc.strain += area * elasticEnergyDensity(sxx, syy, sxy, szz, mat.bulk, mat.shear);
+    acc.strain += area * energyDensity(law, sxx, syy, sxy, szz);
   }, [](Sums& total, const Sums& part) {
     total.strain += part.strain;
     total.plastic += part.plastic;
+    total.firstInverted = std::min(total.firstInverted, part.firstInverted);
   });
+  const bool inverted = sums.firstInverted != std::numeric_limits<int>::max();
+  const int firstInverted = sums.firstInverted;
   if (inverted) {
     std::ostringstream s;
     s << zoneName(m, firstInverted) << " has turned inside out at cycle " << m.cycle << ", time " << m.time
