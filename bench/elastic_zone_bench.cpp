@@ -1,0 +1,222 @@
+// Throughput of the deformable-block (zone) cycle on one elastic square block.
+//
+// The block is 10 m x 10 m, E = 10 GPa, nu = 0.25, density 2500 kg/m^3, no gravity, zoned with
+// zoning = { nx = n, ny = n }: n x n crossed cells, 4 n^2 constant-strain triangles (zones) and
+// (n + 1)^2 + n^2 gridpoints. The bottom edge is fixed in x and y, the top edge carries
+// syy = -1 MPa, and mass damping is 400 1/s (about twice the block's lowest angular frequency;
+// the value does not change the cost of a cycle). The scene is written as TOML to a temporary
+// file and read with vdec::readScene, so the benchmark runs the same model set-up as the vdec
+// executable. The cycle's stages are zone-forces, boundary-tractions and gridpoint-motion, then
+// the step's bookkeeping (energy sums, monitors, time).
+//
+// One change to the model as read: the free gridpoint components start with a slow rigid
+// rotation about the block's centre (kSpin, at most 0.07 m/s), so that every zone is moving from
+// the first cycle. A zone whose spin is exactly zero skips the stress rotation, and the load of
+// the top edge alone reaches the lower rows only after its wave has crossed the block (about
+// 600 cycles at 1e5 zones and 2 000 at 1e6, more than the timed windows), so without the spin
+// the largest mesh would be timed with most zones at rest (measured: 37 ns per zone-cycle
+// instead of 42).
+//
+// Each size and thread count (omp_set_num_threads) gets one vdec::Cycle, which first runs
+// warm-up cycles (not timed: the OpenMP team is started, the arrays are paged in and the caches
+// warm) and then a timed window of a fixed number of cycles per iteration (manual time: only that
+// Cycle::run() call). The zones are all moving throughout, so the cost of a cycle does not
+// depend on how far the run has gone: the iterations continue the same run and each does the
+// same work.
+//
+// Counters:
+//   zones, gridpoints, cycles, threads
+//   ns_per_zone_cycle       run() wall time / (zones x cycles): the whole step
+//   best_ns_per_zone_cycle  the same for the fastest iteration (less sensitive to a busy host)
+//   ns_per_gridpoint_cycle  run() wall time / (gridpoints x cycles)
+//   share_<stage>           that stage's fraction of the timed windows' wall time
+//                           (RunSettings::profile); share_other is the rest: the step's
+//                           bookkeeping, the stage calls and the profiling clock reads
+//   ns_<stage>_per_zone_cycle  that stage's time per zone-cycle
+#include <benchmark/benchmark.h>
+#include <omp.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "core/cycle.hpp"
+#include "core/model.hpp"
+#include "io/scene_reader.hpp"
+
+namespace {
+
+constexpr int kIterations = 3;
+constexpr double kSide = 10.0;  // m
+constexpr double kSpin = 0.01;  // rad/s, initial rigid rotation of the free gridpoint components
+
+std::string blockScene(int n) {
+  std::ostringstream s;
+  s << "title = \"benchmark elastic block " << n << " x " << n << " crossed cells\"\n"
+    << "[model]\ngravity = [0.0, 0.0]\nrounding = 0.01\n"
+    << "[solver]\nmass_damping = 400.0\n"
+    << "[stop]\ncycles = 1\n"
+    << "[[block_material]]\nname = \"rock\"\ndensity = 2500.0\nyoung = 10e9\npoisson = 0.25\n"
+    << "[[block]]\nname = \"block\"\nmaterial = \"rock\"\n"
+    << "vertices = [[0.0, 0.0], [" << kSide << ", 0.0], [" << kSide << ", " << kSide << "], [0.0, " << kSide << "]]\n"
+    << "zoning = { nx = " << n << ", ny = " << n << " }\n"
+    << "[[boundary]]\nblock = \"block\"\ny = [0.0, 0.0]\nfix = [\"x\", \"y\"]\n"
+    << "[[boundary]]\nblock = \"block\"\ny = [" << kSide << ", " << kSide << "]\nstress = [0.0, -1e6, 0.0]\n";
+  return s.str();
+}
+
+// The scene of each size is read once and shared by its thread counts (reading the 1e6-zone
+// block takes seconds: mesh generation, boundary edges, mesh quality).
+const vdec::Scene& readBlock(int n) {
+  static std::map<int, vdec::Scene> scenes;
+  if (auto it = scenes.find(n); it != scenes.end()) return it->second;
+  scenes.clear();  // one size at a time: the 1e6-zone model is about 150 MB
+  const std::filesystem::path path = std::filesystem::temp_directory_path() /
+      ("vdec_bench_zones_" + std::to_string(n) + "_" + std::to_string(getpid()) + ".toml");
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << blockScene(n);
+    if (!out) throw std::runtime_error("cannot write " + path.string());
+  }
+  struct Remove {
+    std::filesystem::path p;
+    ~Remove() { std::filesystem::remove(p); }
+  } remove{path};
+  return scenes.emplace(n, vdec::readScene(path.string())).first->second;
+}
+
+void RunBlock(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const int threads = static_cast<int>(state.range(1));
+  const long long cycles = state.range(2);
+  const long long warmup = std::max<long long>(10, cycles / 10);
+  const vdec::Scene& scene = readBlock(n);
+
+  const int previousThreads = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  struct Restore {
+    int t;
+    ~Restore() { omp_set_num_threads(t); }
+  } restore{previousThreads};
+  int teamSize = 0;
+#pragma omp parallel
+  {
+#pragma omp single
+    teamSize = omp_get_num_threads();
+  }
+  if (teamSize != threads) {
+    state.SkipWithError(("asked for " + std::to_string(threads) + " threads, OpenMP gives " +
+                         std::to_string(teamSize)).c_str());
+    return;
+  }
+
+  vdec::Model model = scene.model;
+  {
+    vdec::Gridpoints& g = model.gridpoints;
+    const double c = 0.5 * kSide;
+    for (int i = 0; i < g.size(); ++i) {
+      const vdec::Vec2 r = g.position[i] - vdec::Vec2{c, c};
+      if (!(g.driven[i] & vdec::DriveX)) g.velocity[i].x = -kSpin * r.y;
+      if (!(g.driven[i] & vdec::DriveY)) g.velocity[i].y = kSpin * r.x;
+    }
+  }
+  const double zones = static_cast<double>(model.zones.size());
+  const double gridpoints = static_cast<double>(model.gridpoints.size());
+  vdec::RunSettings run = scene.settings;
+  run.stop = {};
+  run.stop.cycles = warmup + cycles;
+  run.profile = true;
+  vdec::Cycle cycle(model, run, std::vector<vdec::HistorySpec>{});
+  // Cycle::run() stops when model.cycle reaches stop.cycles: the warm-up starts the counter at
+  // `cycles` and every timed window sets it back to `warmup`. Only the counter moves, not the
+  // state. Cycle 0, whose zone step takes no strain increment from the initial velocities, is
+  // never run: the first step strains the zones by the initial spin, which is what a block that
+  // was already moving would do.
+  model.cycle = cycles;
+  vdec::RunReport previous = cycle.run();
+  if (!previous.error.empty()) {
+    state.SkipWithError(("warm-up: " + previous.error).c_str());
+    return;
+  }
+
+  std::map<std::string, double> stageSeconds;
+  double seconds = 0.0, best = 0.0;
+  long long iterations = 0;
+  for (auto _ : state) {
+    model.cycle = warmup;
+    const auto t0 = std::chrono::steady_clock::now();
+    const vdec::RunReport report = cycle.run();
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    state.SetIterationTime(elapsed);
+    if (!report.error.empty()) {
+      state.SkipWithError(report.error.c_str());
+      return;
+    }
+    if (report.cycles != warmup + cycles) {
+      state.SkipWithError(("the run stopped early: " + report.stopReason).c_str());
+      return;
+    }
+    seconds += elapsed;
+    if (iterations == 0 || elapsed < best) best = elapsed;
+    // The stage clocks run on across the Cycle's runs: take this run's part.
+    for (std::size_t i = 0; i < report.profile.size(); ++i)
+      stageSeconds[report.profile[i].name] += report.profile[i].seconds - previous.profile[i].seconds;
+    previous = report;
+    ++iterations;
+  }
+  if (iterations == 0) return;
+
+  const double totalCycles = static_cast<double>(iterations) * static_cast<double>(cycles);
+  state.counters["n"] = n;
+  state.counters["zones"] = zones;
+  state.counters["gridpoints"] = gridpoints;
+  state.counters["cycles"] = static_cast<double>(cycles);
+  state.counters["warmup_cycles"] = static_cast<double>(warmup);
+  state.counters["threads"] = teamSize;
+  state.counters["ns_per_zone_cycle"] = 1e9 * seconds / (zones * totalCycles);
+  state.counters["best_ns_per_zone_cycle"] = 1e9 * best / (zones * static_cast<double>(cycles));
+  state.counters["ns_per_gridpoint_cycle"] = 1e9 * seconds / (gridpoints * totalCycles);
+  double profiled = 0.0;
+  for (const auto& [name, s] : stageSeconds) {
+    profiled += s;
+    state.counters["share_" + name] = s / seconds;
+    state.counters["ns_" + name + "_per_zone_cycle"] = 1e9 * s / (zones * totalCycles);
+  }
+  state.counters["share_other"] = (seconds - profiled) / seconds;
+  state.counters["ns_other_per_zone_cycle"] = 1e9 * (seconds - profiled) / (zones * totalCycles);
+  state.counters["dt"] = previous.dt;
+  state.SetLabel(std::to_string(n) + "x" + std::to_string(n) + " crossed, " + std::to_string(teamSize) +
+                 (teamSize == 1 ? " thread" : " threads"));
+}
+
+void ElasticZones(benchmark::State& state) {
+  try {
+    RunBlock(state);
+  } catch (const std::exception& e) {  // scene or geometry errors: report, go on with the next size
+    state.SkipWithError(e.what());
+  }
+}
+
+// n x n crossed cells: 4 n^2 = 1 024, 10 000, 99 856 and 1 000 000 zones, each at 1 and 2
+// threads. Cycles per iteration: 4e7 zone-cycles, 1.4-1.9 s of one thread per timed window at
+// about 40 ns per zone-cycle (0.8-1.1 s at two threads); the whole set takes about 30 s.
+BENCHMARK(ElasticZones)
+    ->Args({16, 1, 40000})
+    ->Args({16, 2, 40000})
+    ->Args({50, 1, 4000})
+    ->Args({50, 2, 4000})
+    ->Args({158, 1, 400})
+    ->Args({158, 2, 400})
+    ->Args({500, 1, 40})
+    ->Args({500, 2, 40})
+    ->ArgNames({"n", "threads", "cycles"})
+    ->Iterations(kIterations)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
