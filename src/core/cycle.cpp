@@ -124,7 +124,7 @@ void Cycle::buildStages() {
                          const ContactStepTotals t = computeContactForces(model_, dt_);
                          step_.strainEnergy += t.strainEnergy;
                          energy_.jointRelease += t.jointRelease;
-                         step_.sumForceMagnitude += t.sumForceMagnitude;
+                         step_.forceScaleSum += t.sumForceMagnitude;
                          step_.forceCount += t.closedContacts;
                        }});
   }
@@ -142,28 +142,12 @@ void Cycle::buildStages() {
   }
   if (hasRigidBlocks_) {
     stages_.push_back({"rigid-block-motion", [this] {
-                         const MotionStepTotals t = integrateRigidBlocks(model_, dt_, alpha_);
-                         step_.kineticEnergy += t.kineticEnergy;
-                         step_.largestUnbalanced = std::max(step_.largestUnbalanced, t.largestUnbalancedForce);
-                         step_.largestDisplacement = std::max(step_.largestDisplacement, t.largestDisplacement);
-                         step_.externalWork += t.externalWork;
-                         step_.dampingDissipation += t.dampingDissipation;
-                         step_.dampingPower += t.dampingPower;
-                         step_.kineticRate += t.kineticRate;
+                         step_.merge(integrateRigidBlocks(model_, dt_, alpha_));
                        }});
   }
   if (hasZones_) {
     stages_.push_back({"gridpoint-motion", [this] {
-                         const GridpointStepTotals t = integrateGridpoints(model_, dt_, alpha_);
-                         step_.kineticEnergy += t.kineticEnergy;
-                         step_.largestUnbalanced = std::max(step_.largestUnbalanced, t.largestUnbalancedForce);
-                         step_.largestDisplacement = std::max(step_.largestDisplacement, t.largestDisplacement);
-                         step_.externalWork += t.externalWork;
-                         step_.dampingDissipation += t.dampingDissipation;
-                         step_.sumForceMagnitude += t.sumForceMagnitude;
-                         step_.forceCount += t.freeGridpoints;
-                         step_.dampingPower += t.dampingPower;
-                         step_.kineticRate += t.kineticRate;
+                         step_.merge(integrateGridpoints(model_, dt_, alpha_));
                        }});
   }
   stages_.push_back({"end-of-step", [this] { finishStep(); }, 0.0, false});
@@ -175,9 +159,9 @@ void Cycle::finishStep() {
   step_ = {};
   kineticEnergy_ = t.kineticEnergy;
   strainEnergy_ = t.strainEnergy;
-  largestUnbalanced_ = t.largestUnbalanced;
+  largestUnbalanced_ = t.largestUnbalancedForce;
   largestStepDisplacement_ = t.largestDisplacement;
-  meanContactForce_ = t.forceCount ? t.sumForceMagnitude / t.forceCount : 0.0;
+  meanContactForce_ = t.forceCount ? t.forceScaleSum / t.forceCount : 0.0;
   // Centred in time like the kinetic energy: half of this step's work belongs before the check,
   // half after.
   supplied_ += 0.5 * t.externalWork;

@@ -8,6 +8,7 @@
 #include "contact/contact_detection.hpp"
 #include "core/history.hpp"
 #include "core/model.hpp"
+#include "motion/motion_totals.hpp"
 
 namespace vdec {
 
@@ -85,11 +86,8 @@ class Cycle {
     bool listed = true;  // false for the step's own bookkeeping, which is no model stage
   };
   // Sums the stages of one step contribute to, closed by finishStep.
-  struct StepTotals {
-    double kineticEnergy = 0.0, strainEnergy = 0.0, externalWork = 0.0, dampingDissipation = 0.0;
-    double largestUnbalanced = 0.0, largestDisplacement = 0.0, sumForceMagnitude = 0.0;
-    int forceCount = 0;
-    double dampingPower = 0.0, kineticRate = 0.0;
+  struct StepTotals : MotionStepTotals {
+    double strainEnergy = 0.0;
   };
   void buildStages();
   void finishStep();

@@ -16,7 +16,9 @@ inline constexpr int kReduceChunk = 1024;
 template <class T, class F, class Combine>
 T deterministicReduce(int n, F&& f, Combine&& combine) {
   const int chunks = (n + kReduceChunk - 1) / kReduceChunk;
-  std::vector<T> partial(static_cast<std::size_t>(chunks));
+  // Kept from call to call (per calling thread and type): no allocation once the model is running.
+  static thread_local std::vector<T> partial;
+  partial.assign(static_cast<std::size_t>(chunks), T{});
   // One chunk is not worth waking the other threads for.
 #pragma omp parallel for schedule(static) if (chunks > 1)
   for (int c = 0; c < chunks; ++c) {

@@ -229,29 +229,41 @@ struct StressTable {
   }
 };
 
-StressTable readStressTable(TableReader& r, const std::string& scenePath) {
-  StressTable t;
-  const std::string name = r.string("stress_table");
-  t.file = (std::filesystem::path(scenePath).parent_path() / name).string();
-  std::ifstream in(t.file);
-  if (!in) r.fail("stress_table", "cannot open '" + t.file + "'");
+// Rows of `columns` numbers from a CSV file beside the scene (named by `key` of `r`): a header
+// line and '#' comments are skipped, the first column must increase, two rows at least. Errors
+// name the table's key, the file and the line.
+std::vector<std::vector<double>> readColumns(TableReader& r, std::string_view key, const std::string& scenePath,
+                                             const std::string& columns, std::size_t count, std::string& file) {
+  file = (std::filesystem::path(scenePath).parent_path() / r.string(key)).string();
+  std::ifstream in(file);
+  if (!in) r.fail(key, "cannot open '" + file + "'");
+  std::vector<std::vector<double>> rows;
   std::string line;
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
     if (line.empty() || line[0] == '#' || std::isalpha(static_cast<unsigned char>(line[0]))) continue;  // header
     std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream row(line);
-    double a, sxx, syy, sxy;
+    std::istringstream text(line);
+    std::vector<double> row(count);
     std::string extra;
-    if (!(row >> a >> sxx >> syy >> sxy) || (row >> extra))
-      r.fail("stress_table", t.file + ":" + std::to_string(number) + ": expected four numbers: angle_deg, sxx, syy, sxy");
-    if (!t.angle.empty() && !(a > t.angle.back()))
-      r.fail("stress_table", t.file + ":" + std::to_string(number) + ": angles must increase");
-    t.angle.push_back(a);
-    t.stress.push_back({sxx, syy, sxy});
+    for (double& v : row) text >> v;
+    if (!text || (text >> extra))
+      r.fail(key, file + ":" + std::to_string(number) + ": expected " + std::to_string(count) + " numbers: " + columns);
+    if (!rows.empty() && !(row[0] > rows.back()[0]))
+      r.fail(key, file + ":" + std::to_string(number) + ": the first column must increase");
+    rows.push_back(std::move(row));
   }
-  if (t.angle.size() < 2) r.fail("stress_table", t.file + ": needs at least two rows");
+  if (rows.size() < 2) r.fail(key, file + ": needs at least two rows");
+  return rows;
+}
+
+StressTable readStressTable(TableReader& r, const std::string& scenePath) {
+  StressTable t;
+  for (const auto& row : readColumns(r, "stress_table", scenePath, "angle_deg, sxx, syy, sxy", 4, t.file)) {
+    t.angle.push_back(row[0]);
+    t.stress.push_back({row[1], row[2], row[3]});
+  }
   return t;
 }
 
@@ -272,26 +284,10 @@ TimeFunction readHistory(TableReader& r, const std::string& scenePath) {
     f.phase = t->number("phase", 0.0);
   } else if (kind == "table") {
     f.kind = TimeFunction::Kind::Table;
-    f.name = (std::filesystem::path(scenePath).parent_path() / t->string("file")).string();
-    std::ifstream in(f.name);
-    if (!in) t->fail("file", "cannot open '" + f.name + "'");
-    std::string line;
-    int number = 0;
-    while (std::getline(in, line)) {
-      ++number;
-      if (line.empty() || line[0] == '#' || std::isalpha(static_cast<unsigned char>(line[0]))) continue;
-      std::replace(line.begin(), line.end(), ',', ' ');
-      std::istringstream row(line);
-      double time, value;
-      std::string extra;
-      if (!(row >> time >> value) || (row >> extra))
-        t->fail("file", f.name + ":" + std::to_string(number) + ": expected two numbers: t, f");
-      if (!f.t.empty() && !(time > f.t.back()))
-        t->fail("file", f.name + ":" + std::to_string(number) + ": times must increase");
-      f.t.push_back(time);
-      f.f.push_back(value);
+    for (const auto& row : readColumns(*t, "file", scenePath, "t, f", 2, f.name)) {
+      f.t.push_back(row[0]);
+      f.f.push_back(row[1]);
     }
-    if (f.t.size() < 2) t->fail("file", f.name + ": needs at least two rows");
   } else {
     t->fail("kind", "unknown history '" + kind + "'; use constant, linear, sine, cosine or table");
   }

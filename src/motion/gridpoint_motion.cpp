@@ -29,13 +29,13 @@ void applyDrivenVelocities(Model& m, double dt) {
   }
 }
 
-GridpointStepTotals integrateGridpoints(Model& m, double dt, double alpha) {
+MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha) {
   Gridpoints& g = m.gridpoints;
   const Zones& zn = m.zones;
   const GridpointZones& gz = m.gridpointZones;
   const double lose = 1.0 - 0.5 * alpha * dt, keep = 1.0 / (1.0 + 0.5 * alpha * dt);
   const Vec2 gravity = m.gravity;
-  auto step = [&](int i, GridpointStepTotals& t) {
+  auto step = [&](int i, MotionStepTotals& t) {
     Vec2 zoneForce, absolute;
     for (int k = gz.start[i]; k < gz.start[i + 1]; ++k) {
       const Vec2 f = zn.nodalForce[gz.slot[k] / 3][gz.slot[k] % 3];
@@ -72,24 +72,15 @@ GridpointStepTotals integrateGridpoints(Model& m, double dt, double alpha) {
     v1.y = advance(g.driven[i] & DriveY, v0.y, load.y, body.y, zoneForce.y);
     if (free) {
       t.largestUnbalancedForce = std::max(t.largestUnbalancedForce, std::sqrt(unbalanced));
-      t.sumForceMagnitude += zoneMagnitude;
-      ++t.freeGridpoints;
+      t.forceScaleSum += zoneMagnitude;
+      ++t.forceCount;
     }
     g.velocity[i] = v1;
     g.position[i] += dt * v1;
     t.largestDisplacement = std::max(t.largestDisplacement, norm(v1) * dt);
   };
-  return deterministicReduce<GridpointStepTotals>(g.size(), step, [](GridpointStepTotals& a, const GridpointStepTotals& b) {
-    a.kineticEnergy += b.kineticEnergy;
-    a.externalWork += b.externalWork;
-    a.dampingDissipation += b.dampingDissipation;
-    a.largestUnbalancedForce = std::max(a.largestUnbalancedForce, b.largestUnbalancedForce);
-    a.sumForceMagnitude += b.sumForceMagnitude;
-    a.freeGridpoints += b.freeGridpoints;
-    a.largestDisplacement = std::max(a.largestDisplacement, b.largestDisplacement);
-    a.dampingPower += b.dampingPower;
-    a.kineticRate += b.kineticRate;
-  });
+  return deterministicReduce<MotionStepTotals>(g.size(), step,
+                                               [](MotionStepTotals& a, const MotionStepTotals& b) { a.merge(b); });
 }
 
 }  // namespace vdec

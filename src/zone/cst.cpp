@@ -86,7 +86,9 @@ struct ZoneLaw {
 }  // namespace
 
 ZoneStepTotals computeZoneForces(Model& m, double dt) {
-  std::vector<ZoneLaw> laws;
+  // Kept from step to step so that the running model allocates nothing here.
+  static thread_local std::vector<ZoneLaw> laws;
+  laws.clear();
   for (const BlockMaterial& mat : m.blockMaterials)
     laws.push_back({mat.bulk + 4.0 * mat.shear / 3.0, mat.bulk - 2.0 * mat.shear / 3.0, 2.0 * mat.shear,
                     mat.bulk > 0.0 ? 0.5 / mat.bulk : 0.0, mat.shear > 0.0 ? 0.25 / mat.shear : 0.0, &mat});

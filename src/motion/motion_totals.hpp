@@ -1,0 +1,34 @@
+#pragma once
+// What a motion stage (rigid blocks or gridpoints) reports of one step, summed the same way for
+// both so that the cycle adds them without knowing which produced them.
+#include <algorithm>
+
+namespace vdec {
+
+struct MotionStepTotals {
+  double kineticEnergy = 0.0;       // time-centred: mean of the energies at t - dt/2 and t + dt/2
+  double externalWork = 0.0;        // by gravity, applied loads, tractions and drivers over the step
+  double dampingDissipation = 0.0;  // by mass damping over the step: alpha m vbar^2 dt
+  double largestUnbalancedForce = 0.0;
+  double largestDisplacement = 0.0; // of any vertex or gridpoint over the step (bounds contact detection)
+  double dampingPower = 0.0;        // sum m vbar^2 (times alpha: the power mass damping absorbs; 1.3-23)
+  double kineticRate = 0.0;         // sum m vbar (v1 - v0) / dt, the rate of change of kinetic energy
+  // The scale of the forces for the unbalanced-force ratio: a sum of magnitudes and its count
+  // (closed contacts' forces, or the zone forces on free gridpoints).
+  double forceScaleSum = 0.0;
+  int forceCount = 0;
+
+  void merge(const MotionStepTotals& o) {
+    kineticEnergy += o.kineticEnergy;
+    externalWork += o.externalWork;
+    dampingDissipation += o.dampingDissipation;
+    largestUnbalancedForce = std::max(largestUnbalancedForce, o.largestUnbalancedForce);
+    largestDisplacement = std::max(largestDisplacement, o.largestDisplacement);
+    dampingPower += o.dampingPower;
+    kineticRate += o.kineticRate;
+    forceScaleSum += o.forceScaleSum;
+    forceCount += o.forceCount;
+  }
+};
+
+}  // namespace vdec
