@@ -17,7 +17,9 @@ template <class T, class F, class Combine>
 T deterministicReduce(int n, F&& f, Combine&& combine) {
   const int chunks = (n + kReduceChunk - 1) / kReduceChunk;
   // Kept from call to call (per calling thread and type): no allocation once the model is running.
-  static thread_local std::vector<T> partial;
+  // The worker threads reach it through this reference: their own thread_local copies are empty.
+  static thread_local std::vector<T> buffer;
+  std::vector<T>& partial = buffer;
   partial.assign(static_cast<std::size_t>(chunks), T{});
   // One chunk is not worth waking the other threads for.
 #pragma omp parallel for schedule(static) if (chunks > 1)

@@ -86,8 +86,10 @@ struct ZoneLaw {
 }  // namespace
 
 ZoneStepTotals computeZoneForces(Model& m, double dt) {
-  // Kept from step to step so that the running model allocates nothing here.
-  static thread_local std::vector<ZoneLaw> laws;
+  // Kept from step to step so that the running model allocates nothing here; the zone loop's
+  // worker threads reach it through this reference (their own thread_local copies are empty).
+  static thread_local std::vector<ZoneLaw> lawBuffer;
+  std::vector<ZoneLaw>& laws = lawBuffer;
   laws.clear();
   for (const BlockMaterial& mat : m.blockMaterials)
     laws.push_back({mat.bulk + 4.0 * mat.shear / 3.0, mat.bulk - 2.0 * mat.shear / 3.0, 2.0 * mat.shear,
