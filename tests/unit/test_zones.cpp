@@ -2,6 +2,8 @@
 #include <omp.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 
 #include "core/cycle.hpp"
@@ -453,4 +455,33 @@ TEST(Zoning, DelaunayRefinementGivesQualityTrianglesFillingThePolygon) {
     }
     EXPECT_TRUE(onSide);
   }
+}
+
+TEST(Zones, TableHistoryExcavationAndOutputInputErrorsNameTheKey) {
+  VDEC_REQUIREMENTS("REQ-ZONE-005,REQ-ZONE-012,REQ-ZONE-013,REQ-ZONE-010");
+  const auto dir = std::filesystem::temp_directory_path() / "vdec-unit";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "falling.csv") << "angle_deg,sxx,syy,sxy\n0,1,2,3\n0,1,2,3\n";
+  std::ofstream(dir / "short.csv") << "t,f\n0.0,1.0,7.0\n";
+  const std::string top = "[[boundary]]\nblock = \"patch\"\ny = [1.49, 1.91]\nx = [-0.21, 2.41]\n";
+  auto message = [&](const std::string& extra, const std::string& name) { return sceneError(quadScene(2, 2, extra), name); };
+  EXPECT_NE(message(top + "stress_table = \"missing.csv\"\n", "t-missing").find("key 'boundary[0].stress_table': cannot open"),
+            std::string::npos);
+  const std::string falling = message(top + "stress_table = \"falling.csv\"\n", "t-falling");
+  EXPECT_NE(falling.find("falling.csv:3: the first column must increase"), std::string::npos) << falling;
+  const std::string shortRow =
+      message(top + "pressure = 1e6\nhistory = { kind = \"table\", file = \"short.csv\" }\n", "t-short");
+  EXPECT_NE(shortRow.find("key 'boundary[0].history.file'"), std::string::npos) << shortRow;
+  EXPECT_NE(shortRow.find("short.csv:2: expected 2 numbers: t, f"), std::string::npos) << shortRow;
+  EXPECT_NE(message(top + "pressure = 1e6\nhistory = { kind = \"square\" }\n", "t-kind").find("unknown history 'square'"),
+            std::string::npos);
+  EXPECT_NE(message(top + "fix = [\"x\"]\nhistory = { kind = \"sine\", frequency = 1.0 }\n", "t-fixed")
+                .find("key 'boundary[0].history': a fixed gridpoint has no value to vary"),
+            std::string::npos);
+  EXPECT_NE(message("[[excavation]]\n", "x-neither").find("[excavation[0]]: give either circle"), std::string::npos);
+  EXPECT_NE(message("[output]\nvtk_every = 0\n", "o-zero").find("key 'output.vtk_every': must be >= 1"), std::string::npos);
+  std::string both = quadScene(2, 2);
+  both.replace(both.find("zoning = { nx = 2, ny = 2 }"), 27, "zoning = { nx = 2, ny = 2, max_edge = 0.5 }");
+  EXPECT_NE(sceneError(both, "z-both-kinds").find("give either max_edge (unstructured) or nx and ny"), std::string::npos)
+      << sceneError(both, "z-both-kinds");
 }
