@@ -6,6 +6,7 @@
 
 #include "contact/contact_geometry.hpp"
 #include "core/errors.hpp"
+#include "joint/joint_laws.hpp"
 
 namespace vdec {
 
@@ -184,7 +185,9 @@ void ContactDetection::scan(Model& m) {
     c.joint = m.jointMaterialFor(c.blockA, c.blockB);
     const JointMaterial& j = m.jointMaterials[c.joint];
     c.length = contactLength(m, c.corner, f.hit);
-    c.elasticNormalStress = j.kn * c.overlap;
+    c.elasticNormalStress = j.law == JointLaw::ContinuouslyYielding ? cyNormalStressOfClosure(j, c.overlap)
+                                                                     : j.kn * c.overlap;
+    c.effectiveFriction = j.initialFriction;
     c.open = c.overlap < 0.0;
     // Model #5: only contacts present at the start are bonded rock; faces that come together
     // later have no cohesion or tensile strength.

@@ -51,9 +51,6 @@ FeatureHit trackFeature(const Model& m, Contact& c) {
   return followFeature(m, w, c.blockB, edge, FeatureKind::Edge);
 }
 
-double springEnergy(const JointMaterial& j, const Contact& c, double weight) {
-  return 0.5 * weight * (c.normalStress * c.normalStress / j.kn + c.shearStress * c.shearStress / j.ks);
-}
 
 }  // namespace
 
@@ -82,7 +79,7 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     const JointMaterial& j = m.jointMaterials[c.joint];
     const double weightBefore = contactWeight(j, c);
     const double fnBefore = weightBefore * c.normalStress, fsBefore = weightBefore * c.shearStress;
-    const double energyBefore = c.open ? 0.0 : springEnergy(j, c, weightBefore);
+    const double energyBefore = c.open ? 0.0 : weightBefore * jointSpringEnergy(j, c);
     const double slip = updateJointStresses(j, c, dun, dus);
     // The length matters only while the contact carries stress.
     if (!c.open) c.length = contactLength(m, c.corner, hit);
@@ -92,7 +89,7 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     // Energy account of the contact over the step: the work of its forces on the displacement
     // increments (trapezoidal) is what its springs stored, what slip dissipated, and the rest,
     // which the joint released without work.
-    const double energy = c.open ? 0.0 : springEnergy(j, c, weight);
+    const double energy = c.open ? 0.0 : weight * jointSpringEnergy(j, c);
     const double work = 0.5 * ((fnBefore + fn) * dun + (fsBefore + fs) * dus);
     totals.jointRelease += work - (energy - energyBefore) - weightBefore * slip;
     c.normalDisplacement += dun;
@@ -106,6 +103,11 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     bl.moment[b] -= cross(rb, f);
 
     if (!c.open) {
+      const double growth = jointStiffnessGrowth(j, c);
+      if (growth > totals.stiffnessGrowth) {
+        totals.stiffnessGrowth = growth;
+        totals.stiffestContact = static_cast<int>(i);
+      }
       totals.strainEnergy += energy;
       totals.sumForceMagnitude += std::sqrt(fn * fn + fs * fs);
       ++totals.closedContacts;

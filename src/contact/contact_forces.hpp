@@ -13,6 +13,10 @@ struct ContactStepTotals {
   double jointRelease = 0.0;
   double sumForceMagnitude = 0.0;   // over closed contacts, for the unbalanced-force ratio
   int closedContacts = 0;
+  // The largest ratio of a closed contact's stiffness to the one the time step was set from
+  // (above 1 only for stress-dependent joint stiffness), and that contact's index.
+  double stiffnessGrowth = 1.0;
+  int stiffestContact = -1;
 };
 
 // Throws OverlapError naming the contact when an overlap exceeds half the rounding length.

@@ -25,6 +25,9 @@ using Clock = std::chrono::steady_clock;
 // either grows without bound or, on a frictional contact, is clipped by slip into a chatter that
 // holds two to three times the energy supplied. The alarm at 1.5 lies between the two.
 constexpr double kEnergyExcessLimit = 1.5;
+// The largest step, as a fraction of the critical step of a grown joint stiffness, a run may
+// keep; the margin covers the several contacts and modes one block can have.
+constexpr double kGrownStiffnessLimit = 0.5;
 // Adaptive damping: alpha moves by this factor every other step towards R = 0.5, between
 // 1e-4 / dt (little damping) and 1 / dt (alpha dt / 2 = 0.5, the most 1.3-21 takes before it
 // reverses velocities; past critical for every mode with w dt < 0.5).
@@ -68,6 +71,9 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     }
   }
   dt_ = std::min(dtBlocks, hasZones_ ? zoneTimeStep(model_) : INFINITY);
+  // The step as a fraction of the critical step of the stiffest joint spring on the lightest
+  // free block (kinematic tests, with every block driven, have no such mode).
+  contactStepFraction_ = anyFreeRigid ? settings_.frac * dt_ / dtBlocks : 0.0;
   alpha_ = settings_.adaptiveDamping ? kAdaptiveStart / dt_ : settings_.massDamping;
 
   double scale = 0.0;
@@ -122,6 +128,7 @@ void Cycle::buildStages() {
                        }});
     stages_.push_back({"contact-forces", [this] {
                          const ContactStepTotals t = computeContactForces(model_, dt_);
+                         checkStiffnessGrowth(t);
                          step_.strainEnergy += t.strainEnergy;
                          energy_.jointRelease += t.jointRelease;
                          step_.forceScaleSum += t.sumForceMagnitude;
@@ -219,6 +226,26 @@ void Cycle::checkEnergy() {
       << "far above the others.";
     throw InstabilityError(s.str());
   }
+}
+
+void Cycle::checkStiffnessGrowth(const ContactStepTotals& t) const {
+  // The step was set from the joints' zero-stress stiffness (1.4.7.7); a stiffness grown with
+  // the normal stress shrinks the critical step by its square root. Stop at half of it, before
+  // the energy monitor would see the growth, with the cause named.
+  const double fraction = contactStepFraction_ * std::sqrt(t.stiffnessGrowth);
+  if (fraction <= kGrownStiffnessLimit) return;
+  const Contact& c = model_.contacts[t.stiffestContact];
+  const JointMaterial& j = model_.jointMaterials[c.joint];
+  std::ostringstream s;
+  s << "joint stiffness grown beyond the time step at cycle " << model_.cycle << ", time " << model_.time
+    << " s: contact " << t.stiffestContact << " between blocks '" << model_.blocks.name[c.blockA] << "' and '"
+    << model_.blocks.name[c.blockB] << "' (joint material '" << j.name << "') carries a normal stress of "
+    << c.normalStress << " Pa, where its stiffness is " << t.stiffnessGrowth
+    << " times the zero-stress kn or ks the step was set from. The step is now " << fraction
+    << " of the critical step (the limit is " << kGrownStiffnessLimit << "): lower solver.frac below "
+    << settings_.frac * kGrownStiffnessLimit / fraction << ", or raise kn and ks of '" << j.name
+    << "' towards the stiffness reached.";
+  throw InstabilityError(s.str());
 }
 
 void Cycle::recordHistories(bool initial) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "contact/contact_detection.hpp"
+#include "contact/contact_forces.hpp"
 #include "core/history.hpp"
 #include "core/model.hpp"
 #include "motion/motion_totals.hpp"
@@ -93,6 +94,7 @@ class Cycle {
   void finishStep();
   void adaptDamping(const StepTotals& totals);
   void checkEnergy();
+  void checkStiffnessGrowth(const ContactStepTotals& totals) const;
   void recordHistories(bool initial);
   bool stopReached(std::string& reason) const;
   void printProgress(bool final) const;
@@ -104,6 +106,7 @@ class Cycle {
   std::vector<Stage> stages_;
   ContactDetection detection_;
   double dt_ = 0.0;
+  double contactStepFraction_ = 0.0;
   double largestStepDisplacement_ = 0.0;
   double supplied_ = 0.0;       // initial energy + external work so far
   double largestSupplied_ = 0.0;

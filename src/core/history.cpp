@@ -1,5 +1,7 @@
 #include "core/history.hpp"
 
+#include <numbers>
+
 namespace vdec {
 
 const std::vector<HistoryQuantityInfo>& historyQuantities() {
@@ -22,6 +24,10 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::JointShearDisplacement, "joint.shear_displacement", S::Joint, "m", "mean accumulated shear displacement"},
       {Q::JointLength, "joint.length", S::Joint, "m", "sum of the lengths of closed contacts"},
       {Q::JointContacts, "joint.contacts", S::Joint, "-", "number of contacts"},
+      {Q::JointEffectiveFriction, "joint.effective_friction", S::Joint, "degrees",
+       "mean effective friction angle phi_eff of the contacts (continuously-yielding law)"},
+      {Q::JointPlasticShear, "joint.plastic_shear_displacement", S::Joint, "m",
+       "mean plastic shear displacement of the contacts (continuously-yielding law)"},
       {Q::UnbalancedRatio, "model.unbalanced_ratio", S::Model, "-", "largest unbalanced force / mean contact force"},
       {Q::LargestUnbalancedForce, "model.largest_unbalanced_force", S::Model, "N/m", "largest unbalanced force of a free block"},
       {Q::KineticEnergy, "model.kinetic_energy", S::Model, "J/m", "kinetic energy (time-centred)"},
@@ -54,7 +60,7 @@ HistorySubject findHistorySubject(HistoryQuantity quantity) {
 namespace {
 
 double jointMeasure(const Model& m, const HistorySpec& h) {
-  double normalForce = 0.0, shearForce = 0.0, length = 0.0, un = 0.0, us = 0.0;
+  double normalForce = 0.0, shearForce = 0.0, length = 0.0, un = 0.0, us = 0.0, friction = 0.0, plastic = 0.0;
   int count = 0;
   for (const Contact& c : m.contacts) {
     const bool between = (c.blockA == h.block && c.blockB == h.otherBlock) ||
@@ -65,6 +71,8 @@ double jointMeasure(const Model& m, const HistorySpec& h) {
     if (!c.open) length += c.length;
     un += c.normalDisplacement;
     us += c.shearDisplacement;
+    friction += c.effectiveFriction;
+    plastic += c.plasticShear;
     ++count;
   }
   switch (h.quantity) {
@@ -75,6 +83,8 @@ double jointMeasure(const Model& m, const HistorySpec& h) {
     case HistoryQuantity::JointNormalDisplacement: return count ? un / count : 0.0;
     case HistoryQuantity::JointShearDisplacement: return count ? us / count : 0.0;
     case HistoryQuantity::JointLength: return length;
+    case HistoryQuantity::JointEffectiveFriction: return count ? friction / count * 180.0 / std::numbers::pi : 0.0;
+    case HistoryQuantity::JointPlasticShear: return count ? plastic / count : 0.0;
     default: return static_cast<double>(count);
   }
 }

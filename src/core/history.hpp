@@ -15,6 +15,7 @@ enum class HistoryQuantity {
   BlockRotation, BlockAngularVelocity,
   JointNormalForce, JointShearForce, JointNormalStress, JointShearStress,
   JointNormalDisplacement, JointShearDisplacement, JointLength, JointContacts,
+  JointEffectiveFriction, JointPlasticShear,
   UnbalancedRatio, LargestUnbalancedForce, KineticEnergy, StrainEnergy, EnergyRatio,
   GridpointDisplacementX, GridpointDisplacementY, GridpointVelocityX, GridpointVelocityY,
   ZoneSxx, ZoneSyy, ZoneSxy, ZoneSzz,

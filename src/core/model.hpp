@@ -27,7 +27,7 @@ struct BlockMaterial {
 
 // NUREG/CR-5429 1.4.7: model #1 (point contact, forces), #2 (Coulomb slip), #5 (Coulomb slip
 // with loss of cohesion and tensile strength at first failure).
-enum class JointLaw : std::uint8_t { PointContact, CoulombSlip, CoulombFracture };
+enum class JointLaw : std::uint8_t { PointContact, CoulombSlip, CoulombFracture, ContinuouslyYielding };
 
 struct JointMaterial {
   std::string name;
@@ -38,6 +38,16 @@ struct JointMaterial {
   double cohesion = 0.0;     // Pa (joint laws only)
   double tension = 0.0;      // Pa, tensile strength T0 (joint laws only)
   double tanDilation = 0.0;  // tan(psi)
+  // Continuously yielding (1.4-137 to 1.4-146). kn and ks above are the stiffnesses at zero
+  // normal stress, which set the time step; the stress-dependent ones, an sn^en and as sn^es,
+  // take over where they are larger.
+  double knCoefficient = 0.0;    // an, Pa^(1-en)/m
+  double knExponent = 0.0;       // en
+  double ksCoefficient = 0.0;    // as, Pa^(1-es)/m
+  double ksExponent = 0.0;       // es
+  double friction = 0.0;         // phi, the basic friction angle, rad
+  double initialFriction = 0.0;  // phi_eff at the start, rad
+  double roughness = 0.0;        // R, m
 };
 
 // Degrees of freedom of a rigid block that are driven (velocity prescribed, zero when fixed)
@@ -67,6 +77,11 @@ struct Blocks {
   // A deformable block moves through its gridpoints and zones; the rigid-body fields above
   // then describe its input polygon only, and rigid motion leaves it alone.
   std::vector<std::uint8_t> deformable;
+  // A time function (index into Model::timeFunctions, -1 for none) scaling the input velocity
+  // of the driven degrees of freedom: v = inputVelocity f(t).
+  std::vector<int> velocityHistory;
+  std::vector<Vec2> inputVelocity;
+  std::vector<double> inputAngularVelocity;
 
   int size() const { return static_cast<int>(name.size()); }
   bool movesFreely(int b) const { return driven[b] != DriveAll && !deformable[b]; }
@@ -167,6 +182,12 @@ struct Contact {
   double normalDisplacement = 0.0;   // accumulated, closing positive
   double shearDisplacement = 0.0;    // accumulated, along t
   double slipDissipation = 0.0;      // J/m
+  // Continuously yielding joint state: effective friction phi_eff (rad), plastic shear
+  // displacement, the stress ratio r of the last shear reversal and the last shear direction.
+  double effectiveFriction = 0.0;
+  double plasticShear = 0.0;
+  double reversalRatio = 0.0;
+  std::int8_t shearDirection = 0;
   bool open = false;        // separated, or broken in tension and not closed again
   bool intact = true;       // model #5: cohesion and tensile strength not yet destroyed
   bool slipping = false;

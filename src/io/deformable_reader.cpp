@@ -143,6 +143,9 @@ void addDeformableBlock(Model& m, const std::string& name, int material, const M
   b.appliedForce.push_back({});
   b.appliedMoment.push_back(0.0);
   b.deformable.push_back(1);
+  b.velocityHistory.push_back(-1);
+  b.inputVelocity.push_back({});
+  b.inputAngularVelocity.push_back(0.0);
 
   Gridpoints& g = m.gridpoints;
   const int first = g.size();
@@ -267,9 +270,11 @@ StressTable readStressTable(TableReader& r, const std::string& scenePath) {
   return t;
 }
 
-TimeFunction readHistory(TableReader& r, const std::string& scenePath) {
-  auto t = r.subtable("history");
-  if (!t) r.fail("history", "must be a table, e.g. history = { kind = \"sine\", frequency = 10.0 }");
+}  // namespace
+
+TimeFunction readHistory(TableReader& r, const std::string& scenePath, std::string_view key) {
+  auto t = r.subtable(key);
+  if (!t) r.fail(key, "must be a table, e.g. " + std::string(key) + " = { kind = \"sine\", frequency = 10.0 }");
   TimeFunction f;
   const std::string kind = t->string("kind");
   if (kind == "constant") {
@@ -294,8 +299,6 @@ TimeFunction readHistory(TableReader& r, const std::string& scenePath) {
   t->finish();
   return f;
 }
-
-}  // namespace
 
 void readBoundaries(TableReader& top, Model& m, const std::string& path,
                     const std::function<int(TableReader&, std::string_view, const std::string&)>& blockIndex) {
@@ -342,7 +345,7 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
     if (r.has("history")) {
       if (!(vx || vy || stress || pressure))
         r.fail("history", "a fixed gridpoint has no value to vary: a history scales a velocity, stress or pressure");
-      m.timeFunctions.push_back(readHistory(r, path));
+      m.timeFunctions.push_back(readHistory(r, path, "history"));
       history = static_cast<int>(m.timeFunctions.size()) - 1;
     }
 

@@ -26,6 +26,9 @@ std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& v
 // vertices). Throws GeometryError naming the block for degenerate zones.
 void addDeformableBlock(Model& model, const std::string& name, int material, const Mesh& mesh);
 
+// A time history table under `key`, e.g. history = { kind = "sine", frequency = 10.0 }.
+TimeFunction readHistory(TableReader& r, const std::string& scenePath, std::string_view key);
+
 // [[boundary]] tables and [initial_stress]; `blockIndex` resolves a block name or fails on `r`.
 void readBoundaries(TableReader& top, Model& model, const std::string& path,
                     const std::function<int(TableReader&, std::string_view, const std::string&)>& blockIndex);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <nlohmann/json.hpp>
 
 #include "contact/contact_geometry.hpp"
@@ -23,6 +24,7 @@ const char* jointLawName(JointLaw law) {
     case JointLaw::PointContact: return "point-contact";
     case JointLaw::CoulombSlip: return "coulomb-slip";
     case JointLaw::CoulombFracture: return "coulomb-fracture";
+    case JointLaw::ContinuouslyYielding: return "continuously-yielding";
   }
   return "?";
 }
@@ -163,6 +165,10 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                         {"open", c.open},
                         {"slipping", c.slipping},
                         {"intact", c.intact}});
+    if (m.jointMaterials[c.joint].law == JointLaw::ContinuouslyYielding) {
+      contacts.back()["effective_friction"] = c.effectiveFriction * 180.0 / std::numbers::pi;
+      contacts.back()["plastic_shear_displacement"] = c.plasticShear;
+    }
   }
   j["contacts"] = contacts;
   if (m.zones.size() > 0) writeContinuum(j, m);

@@ -79,8 +79,38 @@ struct BlockInput {
   std::uint8_t driven = 0;
   Vec2 velocity, force;
   double angularVelocity = 0.0, moment = 0.0;
+  int velocityHistory = -1;
   std::string where;  // for geometry errors
 };
+
+// The continuously yielding joint (1.4-137 to 1.4-146): no cohesion, no tensile strength, and a
+// dilation that follows from the apparent friction, so those keys do not apply.
+void readContinuouslyYielding(TableReader& r, JointMaterial& j) {
+  for (const char* key : {"cohesion", "tension", "dilation"})
+    if (r.has(key))
+      r.fail(key, "does not apply to the continuously-yielding law (no cohesion or tensile strength; its dilation "
+                  "follows from the apparent friction, 1.4-145)");
+  const double friction = r.number("friction");
+  if (!(friction > 0.0 && friction < 90.0)) r.fail("friction", "must be in (0, 90) degrees, got " + shown(friction));
+  const double initial = r.number("initial_friction", friction);
+  if (!(initial >= friction && initial < 90.0))
+    r.fail("initial_friction", "must be in [friction, 90) degrees (" + shown(friction) + " to 90), got " + shown(initial));
+  j.friction = radians(friction);
+  j.initialFriction = radians(initial);
+  j.tanFriction = std::tan(j.friction);
+  j.roughness = r.positive("roughness");
+  auto stiffnessLaw = [&r](const char* coefficientKey, const char* exponentKey, double& coefficient, double& exponent) {
+    if (!r.has(coefficientKey)) {
+      if (r.has(exponentKey)) r.fail(exponentKey, std::string("needs ") + coefficientKey);
+      return;
+    }
+    coefficient = r.positive(coefficientKey);
+    exponent = r.number(exponentKey, 0.0);
+    if (!(exponent >= 0.0 && exponent <= 1.0)) r.fail(exponentKey, "must be in [0, 1], got " + shown(exponent));
+  };
+  stiffnessLaw("kn_coefficient", "kn_exponent", j.knCoefficient, j.knExponent);
+  stiffnessLaw("ks_coefficient", "ks_exponent", j.ksCoefficient, j.ksExponent);
+}
 
 void addBlock(Model& m, const BlockInput& in) {
   const double area = signedArea(in.polygon);
@@ -107,6 +137,9 @@ void addBlock(Model& m, const BlockInput& in) {
   b.appliedForce.push_back(in.force);
   b.appliedMoment.push_back(in.moment);
   b.deformable.push_back(0);
+  b.velocityHistory.push_back(in.velocityHistory);
+  b.inputVelocity.push_back(in.velocity);
+  b.inputAngularVelocity.push_back(in.angularVelocity);
   const int block = b.size() - 1;
   for (const Vec2& p : in.polygon) {
     m.vertices.block.push_back(block);
@@ -173,9 +206,17 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
       if (law == "coulomb-slip") j.law = JointLaw::CoulombSlip;
       else if (law == "coulomb-fracture") j.law = JointLaw::CoulombFracture;
       else if (law == "point-contact") j.law = JointLaw::PointContact;
-      else r.fail("law", "unknown joint law '" + law + "'; use coulomb-slip, coulomb-fracture or point-contact");
+      else if (law == "continuously-yielding") j.law = JointLaw::ContinuouslyYielding;
+      else r.fail("law", "unknown joint law '" + law +
+                             "'; use coulomb-slip, coulomb-fracture, continuously-yielding or point-contact");
       j.kn = r.positive("kn");
       j.ks = r.positive("ks");
+      if (j.law == JointLaw::ContinuouslyYielding) {
+        readContinuouslyYielding(r, j);
+        m.jointMaterials.push_back(j);
+        r.finish();
+        continue;
+      }
       const double friction = r.angleDegrees("friction", 0.0);
       const double dilation = r.angleDegrees("dilation", 0.0);
       j.tanFriction = std::tan(radians(friction));
@@ -281,6 +322,13 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     in.angularVelocity = r.number("angular_velocity", 0.0);
     in.force = r.vec2("force", {0.0, 0.0});
     in.moment = r.number("moment", 0.0);
+    if (r.has("velocity_history")) {
+      if (!in.driven)
+        r.fail("velocity_history", "scales the velocity of fixed degrees of freedom, and block '" + in.name +
+                                       "' has none: add fix = [\"x\"] (or y, rotation)");
+      m.timeFunctions.push_back(readHistory(r, path, "velocity_history"));
+      in.velocityHistory = static_cast<int>(m.timeFunctions.size()) - 1;
+    }
     in.where = path + ": block '" + in.name + "' (" + prefix + ", line " + std::to_string(table->source().begin.line) + ")";
     r.finish();
     inputs.push_back(in);

@@ -13,11 +13,110 @@
 
 namespace vdec {
 
+// Continuously yielding joint (Cundall and Hart 1984, Lemos 1987; 1.4-137 to 1.4-146).
+
+// Normal stiffness at normal stress sn: kn = an sn^en (1.4-137), never below the stiffness at
+// zero stress, which a joint starting unloaded needs and the time step is set from.
+inline double cyNormalStiffness(const JointMaterial& j, double sn) {
+  if (j.knCoefficient <= 0.0 || sn <= 0.0) return j.kn;
+  return std::max(j.kn, j.knCoefficient * std::pow(sn, j.knExponent));
+}
+
+// Shear stiffness at normal stress sn: ks = as sn^es (1.4-139), with the same floor.
+inline double cyShearStiffness(const JointMaterial& j, double sn) {
+  if (j.ksCoefficient <= 0.0 || sn <= 0.0) return j.ks;
+  return std::max(j.ks, j.ksCoefficient * std::pow(sn, j.ksExponent));
+}
+
+// The normal stress at which an an sn^en stiffness overtakes the zero-stress one.
+inline double cyKneeStress(const JointMaterial& j) {
+  if (j.knCoefficient <= 0.0) return INFINITY;
+  if (j.knExponent <= 0.0) return j.knCoefficient > j.kn ? 0.0 : INFINITY;
+  return std::pow(j.kn / j.knCoefficient, 1.0 / j.knExponent);
+}
+
+// Energy stored in the normal spring at stress sn >= 0: the integral of s / kn(s) ds, in
+// closed form on the two branches of kn.
+inline double cyNormalSpringEnergy(const JointMaterial& j, double sn) {
+  const double knee = cyKneeStress(j);
+  if (sn <= knee) return 0.5 * sn * sn / j.kn;
+  const double a = j.knCoefficient, e = j.knExponent;
+  return 0.5 * knee * knee / j.kn + (std::pow(sn, 2.0 - e) - std::pow(knee, 2.0 - e)) / (a * (2.0 - e));
+}
+
+// The normal stress of a contact found already closed by `closure`: the loading curve of
+// cyNormalStiffness integrated from zero stress.
+inline double cyNormalStressOfClosure(const JointMaterial& j, double closure) {
+  if (closure <= 0.0) return j.kn * closure;
+  const double knee = cyKneeStress(j);
+  const double kneeClosure = knee / j.kn;
+  if (closure <= kneeClosure) return j.kn * closure;
+  const double a = j.knCoefficient, e = j.knExponent, beyond = closure - kneeClosure;
+  if (e == 1.0) return knee * std::exp(a * beyond);
+  return std::pow(std::pow(knee, 1.0 - e) + a * (1.0 - e) * beyond, 1.0 / (1.0 - e));
+}
+
+// One step of the continuously yielding law. The joint has no tensile strength and no
+// cohesion. Shear follows dtau = F ks dus (1.4-138) with F = (1 - tau/tau_m) / (1 - r)
+// (1.4-140) towards the bounding strength tau_m = sn tan(phi_eff) sign(dus) (1.4-141); r is
+// tau/tau_m at the last reversal, capped at 0.75. phi_eff decays with the plastic shear
+// displacement (1 - F)|dus| (1.4-142, 1.4-143), integrated exactly over the step (1.4-144), so
+// the decay cannot overshoot phi. Dilation at the angle i = atan(|tau|/sn) - phi where positive
+// (1.4-145), on the whole shear increment, opens the joint; against a held normal displacement
+// it shows as added compression. Returns the energy dissipated per unit length: the plastic
+// work of the shear stress less the work of the dilation against the normal stress.
+inline double updateContinuouslyYielding(const JointMaterial& j, Contact& c, double dun, double dus) {
+  c.elasticNormalStress += cyNormalStiffness(j, std::max(c.elasticNormalStress, 0.0)) * dun;
+  c.slipping = false;
+  c.open = c.elasticNormalStress < 0.0;
+  if (c.open) {
+    c.normalStress = c.shearStress = 0.0;
+    return 0.0;
+  }
+  const double sn = c.normalStress = c.elasticNormalStress;
+  if (dus == 0.0 || sn == 0.0) return 0.0;
+  const std::int8_t direction = dus > 0.0 ? 1 : -1;
+  const double boundingStrength = direction * sn * std::tan(c.effectiveFriction);
+  if (c.shearDirection != 0 && direction != c.shearDirection)
+    c.reversalRatio = std::min(c.shearStress / boundingStrength, 0.75);
+  c.shearDirection = direction;
+  const double tau = c.shearStress;
+  const double f = (1.0 - tau / boundingStrength) / (1.0 - c.reversalRatio);
+  c.shearStress = tau + f * cyShearStiffness(j, sn) * dus;
+  const double plastic = (1.0 - f) * std::abs(dus);
+  c.plasticShear += plastic;
+  c.effectiveFriction = j.friction + (c.effectiveFriction - j.friction) * std::exp(-plastic / j.roughness);
+  const double dilationAngle = std::atan(std::abs(tau) / sn) - j.friction;
+  double dilationWork = 0.0;
+  if (dilationAngle > 0.0) {
+    const double opening = std::tan(dilationAngle) * std::abs(dus);
+    c.elasticNormalStress += cyNormalStiffness(j, sn) * opening;
+    dilationWork = sn * opening;
+  }
+  c.slipping = plastic > 0.0;
+  return tau * direction * plastic - dilationWork;
+}
+
+// Energy stored in a closed contact's springs per unit length (times the weight, J/m).
+inline double jointSpringEnergy(const JointMaterial& j, const Contact& c) {
+  if (j.law == JointLaw::ContinuouslyYielding)
+    return cyNormalSpringEnergy(j, c.normalStress) +
+           0.5 * c.shearStress * c.shearStress / cyShearStiffness(j, c.normalStress);
+  return 0.5 * (c.normalStress * c.normalStress / j.kn + c.shearStress * c.shearStress / j.ks);
+}
+
+// How far the contact's stiffness has grown above the one the time step was set from.
+inline double jointStiffnessGrowth(const JointMaterial& j, const Contact& c) {
+  if (j.law != JointLaw::ContinuouslyYielding) return 1.0;
+  return std::max(cyNormalStiffness(j, c.normalStress) / j.kn, cyShearStiffness(j, c.normalStress) / j.ks);
+}
+
 // Updates c.elasticNormalStress, c.normalStress, c.shearStress and the state flags for the
 // displacement increments (dun, dus) of one step. Returns the energy dissipated by slip in the
 // step per unit contact length (times L, J/m): the shear stress's plastic work less what the
 // dilation stores in the normal spring by opening against the normal stress.
 inline double updateJointStresses(const JointMaterial& j, Contact& c, double dun, double dus) {
+  if (j.law == JointLaw::ContinuouslyYielding) return updateContinuouslyYielding(j, c, dun, dus);
   const bool fracture = j.law == JointLaw::CoulombFracture;
   const bool strengthAvailable = (!fracture || c.intact) && j.law != JointLaw::PointContact;
   const double tensileLimit = strengthAvailable ? j.tension : 0.0;

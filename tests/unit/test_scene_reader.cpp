@@ -187,3 +187,43 @@ TEST(SceneReader, RunLimitsAndJointAssignmentsAreChecked) {
   EXPECT_NE(twice.find("already assigned"), std::string::npos) << twice;
   EXPECT_TRUE(std::regex_search(twice, std::regex(R"(assigned-twice\.toml:\d+: key 'joint_assignment\[1\]\.blocks')"))) << twice;
 }
+
+TEST(SceneReader, ContinuouslyYieldingPropertiesAreReadAndCheckedByName) {
+  VDEC_REQUIREMENTS("REQ-JOINT-007, REQ-JOINT-008, REQ-IO-002");
+  const std::string cy = "law = \"continuously-yielding\"\nroughness = 5e-4\ninitial_friction = 40.0\n"
+                         "kn_coefficient = 1e6\nkn_exponent = 0.5\n";
+  const Scene s = sceneFromText(blockOnBase("", cy), "cy-valid");
+  const JointMaterial& j = s.model.jointMaterials[0];
+  EXPECT_EQ(j.law, JointLaw::ContinuouslyYielding);
+  EXPECT_NEAR(j.friction, 30.0 * M_PI / 180.0, 1e-15);
+  EXPECT_NEAR(j.initialFriction, 40.0 * M_PI / 180.0, 1e-15);
+  EXPECT_DOUBLE_EQ(j.roughness, 5e-4);
+  EXPECT_DOUBLE_EQ(j.knExponent, 0.5);
+  auto error = [&](const std::string& from, const std::string& to, const std::string& name) {
+    return sceneError(replaced(blockOnBase("", cy), from, to), name);
+  };
+  const std::string exponent = error("kn_exponent = 0.5", "kn_exponent = 1.5", "cy-exponent");
+  EXPECT_TRUE(std::regex_search(exponent, std::regex(R"(cy-exponent\.toml:\d+: key 'joint_material\[0\]\.kn_exponent': must be in \[0, 1\])")))
+      << exponent;
+  EXPECT_NE(error("roughness = 5e-4", "roughness = 0.0", "cy-roughness").find("'joint_material[0].roughness': must be > 0"),
+            std::string::npos);
+  EXPECT_NE(error("initial_friction = 40.0", "initial_friction = 20.0", "cy-initial").find("initial_friction': must be in [friction, 90)"),
+            std::string::npos);
+  EXPECT_NE(error("friction = 30.0", "friction = 0.0", "cy-friction").find("friction': must be in (0, 90)"),
+            std::string::npos);
+  EXPECT_NE(error("roughness = 5e-4", "roughness = 5e-4\ncohesion = 1e5", "cy-cohesion").find("does not apply to the continuously-yielding law"),
+            std::string::npos);
+  EXPECT_NE(error("kn_coefficient = 1e6\n", "", "cy-orphan").find("kn_exponent': needs kn_coefficient"), std::string::npos);
+}
+
+TEST(SceneReader, VelocityHistoryNeedsADrivenDegreeOfFreedom) {
+  VDEC_REQUIREMENTS("REQ-MOTION-003, REQ-IO-002");
+  const std::string top = "vertices = [[-0.5, 0.0], [0.5, 0.0], [0.5, 1.0], [-0.5, 1.0]]\n";
+  const std::string driven = top + "fix = [\"x\"]\nvelocity = [1e-3, 0.0]\nvelocity_history = { kind = \"sine\", frequency = 2.0 }\n";
+  const Scene s = sceneFromText(replaced(blockOnBase(), top, driven), "history-valid");
+  ASSERT_EQ(s.model.blocks.velocityHistory[1], 0);
+  EXPECT_NEAR(s.model.timeFunctions[0](0.125), 1.0, 1e-12);
+  const std::string e = sceneError(replaced(blockOnBase(), top, top + "velocity_history = { kind = \"constant\" }\n"), "history-free");
+  EXPECT_TRUE(std::regex_search(e, std::regex(R"(history-free\.toml:\d+: key 'block\[1\]\.velocity_history': scales the velocity of fixed)")))
+      << e;
+}
