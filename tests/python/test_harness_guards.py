@@ -206,3 +206,24 @@ def test_invalid_problems_are_reported_not_skipped(tmp_path):
     assert record["status"] == "invalid" and "key 'check[0].norm'" in record["message"]
     assert record["requirements"] == ["REQ-QA-002"] and record["title"] == "t"
     assert judge(Entry("X-4", root / "X-4", error="no problem.toml"), {})["status"] == "invalid"
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_an_expected_stop_for_another_reason_fails(tmp_path):
+    text = VALID.replace('[[check]]', '[[variant]]\nname = "stop"\nexpect_exit = 5\n'
+                         'overrides = ["fake.exit_code=5"]\nexpect_message = "joint stiffness grown"\n\n[[check]]', 1)
+    text = text.replace('extract = { kind = "final", history = "h" }', 'extract = { kind = "exit_code" }\nvariant = "stop"')
+    text = text.replace('reference = { function = "rigid_blocks.resting_normal_force", params = { mass = 1.0, g = 1.0 } }',
+                        'reference = { constant = 5 }').replace('norm = "scalar"\nrtol = 1e-3\n', 'norm = "equal"\n')
+    write_problem(tmp_path / "problems", text)
+    records = run_suite(discover(tmp_path / "problems"), FAKE_VDEC, tmp_path / "out", jobs=1, progress=None)
+    assert records[0]["status"] == "fail"
+    assert "not with the expected message 'joint stiffness grown'" in records[0]["message"]
+    assert "fake failure with exit code 5" in records[0]["message"]
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_an_expected_message_needs_a_nonzero_exit(tmp_path):
+    text = VALID.replace('[[check]]', '[[variant]]\nname = "v"\nexpect_message = "x"\n\n[[check]]', 1)
+    with pytest.raises(ProblemError, match=r"variant\[0\]\.expect_message"):
+        load_problem(write_problem(tmp_path, text))

@@ -16,6 +16,8 @@ Keys of problem.toml:
     name = "frac-0.5"             required; letters, digits, ".", "_", "-"; the run goes in runs/<ID>/<name>/
     overrides = ["solver.frac=0.5"]    added after the problem's overrides
     expect_exit = 0               default: the problem's expect_exit
+    expect_message = "..."        optional, with a nonzero expect_exit: text the run's stderr must hold,
+                                  so that a stop counts only when it is for the expected reason
 
     [[check]]                     at least one
     quantity = "..."              required, human-readable
@@ -86,7 +88,7 @@ PROBLEM_KEYS = ("id", "title", "requirements", "scene", "level", "overrides", "e
                 "variant", "refinement", "check")
 # Tables planned for later work: named here so that using one says so rather than "unknown key".
 PLANNED_KEYS = {}
-VARIANT_KEYS = ("name", "overrides", "expect_exit")
+VARIANT_KEYS = ("name", "overrides", "expect_exit", "expect_message")
 CHECK_KEYS = ("quantity", "extract", "reference", "norm", "rtol", "atol", "justification", "variant", "refinement")
 REFINEMENT_KEYS = ("expected_order", "order_tolerance", "justification", "asymptotic_levels", "level")
 LEVEL_KEYS = ("name", "h", "overrides", "level")
@@ -105,6 +107,7 @@ class Run:
     name: str
     overrides: tuple
     expect_exit: int
+    expect_message: str = ""
 
     @property
     def label(self):
@@ -519,7 +522,11 @@ def load_problem(path):
             continue
         extra = _overrides(errors, v.get("overrides", []), f"{where}.overrides")
         code = _exit_code(errors, v.get("expect_exit", expect_exit), f"{where}.expect_exit")
-        variants.append(Run(name, overrides + extra, code))
+        message = v.get("expect_message", "")
+        if not isinstance(message, str) or ("expect_message" in v and (not message or code == 0)):
+            errors.add(f"{where}.expect_message", "must be non-empty text, and goes with a nonzero expect_exit")
+            message = ""
+        variants.append(Run(name, overrides + extra, code, message))
 
     refinement = None
     if "refinement" in data:

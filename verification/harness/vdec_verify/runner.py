@@ -185,6 +185,9 @@ def execute(problem, run, vdec, out):
             diagnostic = _last_line(stderr)
             if diagnostic:
                 outcome.failure += f": {diagnostic}"
+        if not outcome.failure and run.expect_message and run.expect_message not in stderr:
+            outcome.failure = (f"exited {outcome.exit_code} as expected, but not with the expected message "
+                               f"{run.expect_message!r}: {_last_line(stderr) or 'no message'}")
         if not outcome.failure and run.expect_exit == 0 and outcome.results is None:
             outcome.failure = "exited 0 but wrote no results.json"
     except Exception as e:  # e.g. the output folder cannot be written: report it, keep the suite going
