@@ -104,7 +104,7 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
 
     if (!c.open) {
       const double growth = jointStiffnessGrowth(j, c);
-      if (growth > totals.stiffnessGrowth) {
+      if (growth > 1.0 && growth > totals.stiffnessGrowth) {
         totals.stiffnessGrowth = growth;
         totals.stiffestContact = static_cast<int>(i);
       }

@@ -127,7 +127,9 @@ void Cycle::buildStages() {
                          if (model_.cycle > 0) detection_.update(model_, largestStepDisplacement_);
                        }});
     stages_.push_back({"contact-forces", [this] {
-                         const ContactStepTotals t = computeContactForces(model_, dt_);
+                         // As for the zones: before the first step no motion has happened
+                         // for the initial velocities, v(-dt/2), to have displaced the joints.
+                         const ContactStepTotals t = computeContactForces(model_, model_.cycle == 0 ? 0.0 : dt_);
                          checkStiffnessGrowth(t);
                          step_.strainEnergy += t.strainEnergy;
                          energy_.jointRelease += t.jointRelease;
@@ -232,6 +234,7 @@ void Cycle::checkStiffnessGrowth(const ContactStepTotals& t) const {
   // The step was set from the joints' zero-stress stiffness (1.4.7.7); a stiffness grown with
   // the normal stress shrinks the critical step by its square root. Stop at half of it, before
   // the energy monitor would see the growth, with the cause named.
+  if (t.stiffestContact < 0) return;  // no stiffness grew: the step is as FRAC set it
   const double fraction = contactStepFraction_ * std::sqrt(t.stiffnessGrowth);
   if (fraction <= kGrownStiffnessLimit) return;
   const Contact& c = model_.contacts[t.stiffestContact];
