@@ -69,6 +69,9 @@ std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m
 void ContactDetection::scan(Model& m) {
   ++scans_;
   motionSinceScan_ = 0.0;
+  scanCentroid_ = m.blocks.centroid;
+  scanRotation_ = m.blocks.rotation;
+  scanGridpoint_ = m.gridpoints.position;
   // Contacts persist by key (corner, block B); the previous list is looked up through a sorted
   // index so that the contacts themselves are not moved.
   const std::vector<Contact>& previous = m.contacts;
@@ -155,6 +158,9 @@ void ContactDetection::scan(Model& m) {
   const double touching = 1e-6 * m.roundingLength;
   std::vector<Contact> kept;
   kept.reserve(found.size());
+  const bool yielding = m.hasYieldingJoints();
+  std::vector<YieldingState> keptStates;
+  if (yielding) keptStates.reserve(found.size());
   std::vector<char> carried(previous.size(), 0);
   for (const Candidate& f : found) {
     if (f.hit.kind == FeatureKind::Corner) {
@@ -169,6 +175,7 @@ void ContactDetection::scan(Model& m) {
     if (const Contact* old = f.existing) {
       carried[old - previous.data()] = 1;
       kept.push_back(*old);
+      if (yielding) keptStates.push_back(m.yieldingStates[old - previous.data()]);
       continue;
     }
     // A new contact. A joint contact's stress is its spring's from zero overlap: stress-free
@@ -187,7 +194,6 @@ void ContactDetection::scan(Model& m) {
     c.length = contactLength(m, c.corner, f.hit);
     c.elasticNormalStress = j.law == JointLaw::ContinuouslyYielding ? cyNormalStressOfClosure(j, c.overlap)
                                                                      : j.kn * c.overlap;
-    c.effectiveFriction = j.initialFriction;
     c.open = c.overlap < 0.0;
     // Model #5: only contacts present at the start are bonded rock; faces that come together
     // later have no cohesion or tensile strength.
@@ -204,10 +210,12 @@ void ContactDetection::scan(Model& m) {
       c.open = false;
     }
     kept.push_back(c);
+    if (yielding) keptStates.push_back({j.initialFriction});
   }
   for (std::size_t i = 0; i < previous.size(); ++i)
     if (!carried[i]) m.deletedSlipDissipation += previous[i].slipDissipation;
   m.contacts = std::move(kept);
+  m.yieldingStates = std::move(keptStates);
 }
 
 namespace {
@@ -244,9 +252,26 @@ void ContactDetection::initialise(Model& m) {
   }
 }
 
+double ContactDetection::largestDisplacementSinceScan(const Model& m) const {
+  // A vertex of a rigid block is displaced by at most |dc| + |dtheta| R: the centroid's move
+  // plus the chord of the rotation about it.
+  const Blocks& bl = m.blocks;
+  double largest = 0.0;
+  for (int b = 0; b < bl.size(); ++b)
+    largest = std::max(largest, norm(bl.centroid[b] - scanCentroid_[b]) +
+                                    std::abs(bl.rotation[b] - scanRotation_[b]) * bl.boundingRadius[b]);
+  for (int i = 0; i < m.gridpoints.size(); ++i)
+    largest = std::max(largest, norm(m.gridpoints.position[i] - scanGridpoint_[i]));
+  return largest;
+}
+
 void ContactDetection::update(Model& m, double largestStepDisplacement) {
+  // The path travelled bounds the displacement and costs nothing; only once it passes the
+  // limit is the displacement itself measured, so that blocks vibrating in place (a lattice
+  // at rest, undamped) do not trigger scans.
   motionSinceScan_ += largestStepDisplacement;
-  if (motionSinceScan_ > 0.5 * m.contactTolerance) scan(m);
+  const double limit = 0.5 * m.contactTolerance;
+  if (motionSinceScan_ > limit && largestDisplacementSinceScan(m) > limit) scan(m);
 }
 
 }  // namespace vdec

@@ -1,8 +1,9 @@
 #pragma once
 // Contact detection: a sort-and-sweep broad phase over block bounding boxes, then the rounded-
 // corner narrow phase for each candidate pair. Detection runs only when blocks may have moved
-// far enough to make or break a contact: after the accumulated largest vertex displacement
-// exceeds half the contact tolerance, no pair can have closed a gap larger than the tolerance.
+// far enough to make or break a contact: when some vertex has moved more than half the contact
+// tolerance from where the last scan saw it, since until then no pair can have closed a gap
+// larger than the tolerance.
 #include <vector>
 
 #include "core/model.hpp"
@@ -21,8 +22,12 @@ class ContactDetection {
  private:
   void scan(Model& model);
   std::vector<std::pair<int, int>> candidatePairs(const Model& model);
+  double largestDisplacementSinceScan(const Model& model) const;
 
-  double motionSinceScan_ = 0.0;
+  double motionSinceScan_ = 0.0;  // path length of the fastest vertex, a cheap upper bound
+  std::vector<Vec2> scanCentroid_;  // block and gridpoint positions at the last scan
+  std::vector<double> scanRotation_;
+  std::vector<Vec2> scanGridpoint_;
   int scans_ = 0;
   std::vector<int> order_;  // blocks sorted by bounding-box minimum x, reused between scans
   std::vector<double> minX_, maxX_, minY_, maxY_;

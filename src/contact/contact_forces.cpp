@@ -80,7 +80,9 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     const double weightBefore = contactWeight(j, c);
     const double fnBefore = weightBefore * c.normalStress, fsBefore = weightBefore * c.shearStress;
     const double energyBefore = c.open ? 0.0 : weightBefore * jointSpringEnergy(j, c);
-    const double slip = updateJointStresses(j, c, dun, dus);
+    const double slip = j.law == JointLaw::ContinuouslyYielding
+                            ? updateContinuouslyYielding(j, c, m.yieldingStates[i], dun, dus)
+                            : updateJointStresses(j, c, dun, dus);
     // The length matters only while the contact carries stress.
     if (!c.open) c.length = contactLength(m, c.corner, hit);
     const double weight = contactWeight(j, c);

@@ -62,7 +62,8 @@ namespace {
 double jointMeasure(const Model& m, const HistorySpec& h) {
   double normalForce = 0.0, shearForce = 0.0, length = 0.0, un = 0.0, us = 0.0, friction = 0.0, plastic = 0.0;
   int count = 0;
-  for (const Contact& c : m.contacts) {
+  for (std::size_t i = 0; i < m.contacts.size(); ++i) {
+    const Contact& c = m.contacts[i];
     const bool between = (c.blockA == h.block && c.blockB == h.otherBlock) ||
                          (c.blockA == h.otherBlock && c.blockB == h.block);
     if (!between) continue;
@@ -71,8 +72,10 @@ double jointMeasure(const Model& m, const HistorySpec& h) {
     if (!c.open) length += c.length;
     un += c.normalDisplacement;
     us += c.shearDisplacement;
-    friction += c.effectiveFriction;
-    plastic += c.plasticShear;
+    if (!m.yieldingStates.empty()) {
+      friction += m.yieldingStates[i].effectiveFriction;
+      plastic += m.yieldingStates[i].plasticShear;
+    }
     ++count;
   }
   switch (h.quantity) {

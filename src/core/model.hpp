@@ -182,15 +182,20 @@ struct Contact {
   double normalDisplacement = 0.0;   // accumulated, closing positive
   double shearDisplacement = 0.0;    // accumulated, along t
   double slipDissipation = 0.0;      // J/m
-  // Continuously yielding joint state: effective friction phi_eff (rad), plastic shear
-  // displacement, the stress ratio r of the last shear reversal and the last shear direction.
+  bool open = false;        // separated, or broken in tension and not closed again
+  bool intact = true;       // model #5: cohesion and tensile strength not yet destroyed
+  bool slipping = false;
+};
+
+// The state a continuously yielding joint adds to a contact: effective friction phi_eff (rad),
+// plastic shear displacement, the stress ratio r of the last shear reversal and the last shear
+// direction. Kept beside the contacts rather than in them, so that scenes without this law
+// stream no bytes for it through the contact loop.
+struct YieldingState {
   double effectiveFriction = 0.0;
   double plasticShear = 0.0;
   double reversalRatio = 0.0;
   std::int8_t shearDirection = 0;
-  bool open = false;        // separated, or broken in tension and not closed again
-  bool intact = true;       // model #5: cohesion and tensile strength not yet destroyed
-  bool slipping = false;
 };
 
 // The weight that turns a contact's stresses into forces (Fn = w sn, Fs = w tau): the contact
@@ -217,6 +222,13 @@ struct Model {
   };
   std::vector<BoundaryEdge> boundaryEdges;
   std::vector<Contact> contacts;
+  // Parallel to contacts when a joint material is continuously yielding, else empty.
+  std::vector<YieldingState> yieldingStates;
+  bool hasYieldingJoints() const {
+    for (const JointMaterial& j : jointMaterials)
+      if (j.law == JointLaw::ContinuouslyYielding) return true;
+    return false;
+  }
   double deletedSlipDissipation = 0.0;  // J/m, by contacts that no longer exist
   // Joint material per unordered block pair where the scene assigns one; else defaultJoint.
   std::vector<std::pair<std::pair<int, int>, int>> jointAssignments;

@@ -146,7 +146,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
   }
   j["blocks"] = blocks;
   json contacts = json::array();
-  for (const Contact& c : m.contacts) {
+  for (std::size_t i = 0; i < m.contacts.size(); ++i) {
+    const Contact& c = m.contacts[i];
     const Vec2 point = contactPoint(m, c);
     contacts.push_back({{"block_a", m.blocks.name[c.blockA]},
                         {"corner", c.corner - m.blocks.firstVertex[c.blockA]},
@@ -166,8 +167,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                         {"slipping", c.slipping},
                         {"intact", c.intact}});
     if (m.jointMaterials[c.joint].law == JointLaw::ContinuouslyYielding) {
-      contacts.back()["effective_friction"] = c.effectiveFriction * 180.0 / std::numbers::pi;
-      contacts.back()["plastic_shear_displacement"] = c.plasticShear;
+      contacts.back()["effective_friction"] = m.yieldingStates[i].effectiveFriction * 180.0 / std::numbers::pi;
+      contacts.back()["plastic_shear_displacement"] = m.yieldingStates[i].plasticShear;
     }
   }
   j["contacts"] = contacts;

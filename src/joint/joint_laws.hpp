@@ -65,7 +65,8 @@ inline double cyNormalStressOfClosure(const JointMaterial& j, double closure) {
 // (1.4-145), on the whole shear increment, opens the joint; against a held normal displacement
 // it shows as added compression. Returns the energy dissipated per unit length: the plastic
 // work of the shear stress less the work of the dilation against the normal stress.
-inline double updateContinuouslyYielding(const JointMaterial& j, Contact& c, double dun, double dus) {
+inline double updateContinuouslyYielding(const JointMaterial& j, Contact& c, YieldingState& y, double dun,
+                                         double dus) {
   c.elasticNormalStress += cyNormalStiffness(j, std::max(c.elasticNormalStress, 0.0)) * dun;
   c.slipping = false;
   c.open = c.elasticNormalStress < 0.0;
@@ -76,16 +77,16 @@ inline double updateContinuouslyYielding(const JointMaterial& j, Contact& c, dou
   const double sn = c.normalStress = c.elasticNormalStress;
   if (dus == 0.0 || sn == 0.0) return 0.0;
   const std::int8_t direction = dus > 0.0 ? 1 : -1;
-  const double boundingStrength = direction * sn * std::tan(c.effectiveFriction);
-  if (c.shearDirection != 0 && direction != c.shearDirection)
-    c.reversalRatio = std::min(c.shearStress / boundingStrength, 0.75);
-  c.shearDirection = direction;
+  const double boundingStrength = direction * sn * std::tan(y.effectiveFriction);
+  if (y.shearDirection != 0 && direction != y.shearDirection)
+    y.reversalRatio = std::min(c.shearStress / boundingStrength, 0.75);
+  y.shearDirection = direction;
   const double tau = c.shearStress;
-  const double f = (1.0 - tau / boundingStrength) / (1.0 - c.reversalRatio);
+  const double f = (1.0 - tau / boundingStrength) / (1.0 - y.reversalRatio);
   c.shearStress = tau + f * cyShearStiffness(j, sn) * dus;
   const double plastic = (1.0 - f) * std::abs(dus);
-  c.plasticShear += plastic;
-  c.effectiveFriction = j.friction + (c.effectiveFriction - j.friction) * std::exp(-plastic / j.roughness);
+  y.plasticShear += plastic;
+  y.effectiveFriction = j.friction + (y.effectiveFriction - j.friction) * std::exp(-plastic / j.roughness);
   const double dilationAngle = std::atan(std::abs(tau) / sn) - j.friction;
   double dilationWork = 0.0;
   if (dilationAngle > 0.0) {
@@ -112,11 +113,11 @@ inline double jointStiffnessGrowth(const JointMaterial& j, const Contact& c) {
 }
 
 // Updates c.elasticNormalStress, c.normalStress, c.shearStress and the state flags for the
-// displacement increments (dun, dus) of one step. Returns the energy dissipated by slip in the
+// displacement increments (dun, dus) of one step, for the point-contact and Coulomb laws (the
+// continuously yielding law, with its own state, is updateContinuouslyYielding). Returns the energy dissipated by slip in the
 // step per unit contact length (times L, J/m): the shear stress's plastic work less what the
 // dilation stores in the normal spring by opening against the normal stress.
 inline double updateJointStresses(const JointMaterial& j, Contact& c, double dun, double dus) {
-  if (j.law == JointLaw::ContinuouslyYielding) return updateContinuouslyYielding(j, c, dun, dus);
   const bool fracture = j.law == JointLaw::CoulombFracture;
   const bool strengthAvailable = (!fracture || c.intact) && j.law != JointLaw::PointContact;
   const double tensileLimit = strengthAvailable ? j.tension : 0.0;

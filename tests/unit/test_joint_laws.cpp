@@ -120,44 +120,50 @@ JointMaterial continuouslyYielding() {
   return j;
 }
 
-Contact cyContactAt(const JointMaterial& j, double sn) {
+// A contact of the law closed to normal stress sn (below the knee of a power-law stiffness),
+// with its yielding state.
+struct CyContact {
   Contact c;
-  c.effectiveFriction = j.initialFriction;
-  updateJointStresses(j, c, sn / j.kn, 0.0);
-  return c;
+  YieldingState y;
+};
+CyContact cyContactAt(const JointMaterial& j, double sn) {
+  CyContact out;
+  out.y.effectiveFriction = j.initialFriction;
+  updateContinuouslyYielding(j, out.c, out.y, sn / j.kn, 0.0);
+  return out;
 }
 }  // namespace
 
 TEST(JointLaws, ContinuouslyYieldingFirstIncrementIsElasticThenSlopeIsKsTimesF) {
   VDEC_REQUIREMENTS("REQ-JOINT-007");
   const JointMaterial j = continuouslyYielding();
-  Contact c = cyContactAt(j, 1e6);
+  auto [c, y] = cyContactAt(j, 1e6);
   EXPECT_DOUBLE_EQ(c.normalStress, 1e6);
   // F = 1 at tau = 0: the first increment is the elastic one, with no plastic displacement.
-  updateJointStresses(j, c, 0.0, 1e-6);
+  updateContinuouslyYielding(j, c, y, 0.0, 1e-6);
   EXPECT_DOUBLE_EQ(c.shearStress, 1e3);
-  EXPECT_DOUBLE_EQ(c.plasticShear, 0.0);
+  EXPECT_DOUBLE_EQ(y.plasticShear, 0.0);
   // The next has F = 1 - tau / (sn tan phi_eff), and (1 - F) |dus| of plastic displacement,
   // which lowers phi_eff towards phi by exp(-dus_p / R) (1.4-144).
   const double f = 1.0 - 1e3 / (1e6 * std::tan(j.initialFriction));
-  updateJointStresses(j, c, 0.0, 1e-6);
+  updateContinuouslyYielding(j, c, y, 0.0, 1e-6);
   EXPECT_NEAR(c.shearStress, 1e3 + f * 1e3, 1e-9);
-  EXPECT_NEAR(c.plasticShear, (1.0 - f) * 1e-6, 1e-21);
-  EXPECT_NEAR(c.effectiveFriction, j.friction + (j.initialFriction - j.friction) * std::exp(-(1.0 - f) * 1e-6 / 5e-4),
+  EXPECT_NEAR(y.plasticShear, (1.0 - f) * 1e-6, 1e-21);
+  EXPECT_NEAR(y.effectiveFriction, j.friction + (j.initialFriction - j.friction) * std::exp(-(1.0 - f) * 1e-6 / 5e-4),
               1e-15);
 }
 
 TEST(JointLaws, ContinuouslyYieldingPeaksAtTheBoundingStrengthThenSoftensToResidual) {
   VDEC_REQUIREMENTS("REQ-JOINT-007");
   const JointMaterial j = continuouslyYielding();
-  Contact c = cyContactAt(j, 1e6);
+  auto [c, y] = cyContactAt(j, 1e6);
   double peak = 0.0, peakBound = 0.0;
   for (int i = 0; i < 20000; ++i) {  // 20 mm in 1 um steps
     const double before = c.shearStress;
-    updateJointStresses(j, c, 0.0, 1e-6);
+    updateContinuouslyYielding(j, c, y, 0.0, 1e-6);
     if (c.shearStress < before && peak == 0.0) {
       peak = before;
-      peakBound = 1e6 * std::tan(c.effectiveFriction);
+      peakBound = 1e6 * std::tan(y.effectiveFriction);
     }
     c.elasticNormalStress = c.normalStress = 1e6;  // constant normal stress: discard the dilation
   }
@@ -165,48 +171,48 @@ TEST(JointLaws, ContinuouslyYieldingPeaksAtTheBoundingStrengthThenSoftensToResid
   EXPECT_NEAR(peak, peakBound, 2e3);
   EXPECT_GT(peak, 1e6 * std::tan(j.friction) * 1.05);
   // Residual: phi_eff -> phi and tau -> sn tan(phi).
-  EXPECT_NEAR(c.effectiveFriction, j.friction, 1e-9);
+  EXPECT_NEAR(y.effectiveFriction, j.friction, 1e-9);
   EXPECT_NEAR(c.shearStress, 1e6 * std::tan(j.friction), 1.0);
 }
 
 TEST(JointLaws, ContinuouslyYieldingReversalRestoresTheElasticSlopeAndCapsR) {
   VDEC_REQUIREMENTS("REQ-JOINT-007");
   const JointMaterial j = continuouslyYielding();
-  Contact c = cyContactAt(j, 1e6);
+  auto [c, y] = cyContactAt(j, 1e6);
   for (int i = 0; i < 2000; ++i) {
-    updateJointStresses(j, c, 0.0, 1e-6);
+    updateContinuouslyYielding(j, c, y, 0.0, 1e-6);
     c.elasticNormalStress = c.normalStress = 1e6;  // constant normal stress
   }
-  const double tau = c.shearStress, phiEff = c.effectiveFriction;
+  const double tau = c.shearStress, phiEff = y.effectiveFriction;
   // Reversal: r = tau / tau_m with tau_m now negative, so F = 1.
-  updateJointStresses(j, c, 0.0, -1e-7);
+  updateContinuouslyYielding(j, c, y, 0.0, -1e-7);
   EXPECT_NEAR(c.shearStress, tau - 1e9 * 1e-7, 1e-6);
-  EXPECT_DOUBLE_EQ(c.reversalRatio, tau / (-1e6 * std::tan(phiEff)));
+  EXPECT_DOUBLE_EQ(y.reversalRatio, tau / (-1e6 * std::tan(phiEff)));
   c.elasticNormalStress = c.normalStress = 1e6;
   // Straight back: r = tau / tau_m is near 1 and capped at 0.75, F = (1 - tau/tau_m) / 0.25.
-  const double before = c.shearStress, bound = 1e6 * std::tan(c.effectiveFriction);
-  updateJointStresses(j, c, 0.0, 1e-8);
-  EXPECT_DOUBLE_EQ(c.reversalRatio, 0.75);
+  const double before = c.shearStress, bound = 1e6 * std::tan(y.effectiveFriction);
+  updateContinuouslyYielding(j, c, y, 0.0, 1e-8);
+  EXPECT_DOUBLE_EQ(y.reversalRatio, 0.75);
   EXPECT_NEAR(c.shearStress, before + (1.0 - before / bound) / 0.25 * 1e9 * 1e-8, 1e-6);
 }
 
 TEST(JointLaws, ContinuouslyYieldingDilatesAboveTheBasicFrictionAndHasNoTensileStrength) {
   VDEC_REQUIREMENTS("REQ-JOINT-007");
   JointMaterial j = continuouslyYielding();
-  Contact c = cyContactAt(j, 1e6);
+  auto [c, y] = cyContactAt(j, 1e6);
   c.shearStress = 0.8e6;  // apparent friction atan(0.8) = 38.66 degrees > phi = 30
-  const double work = updateJointStresses(j, c, 0.0, 1e-6);
+  const double work = updateContinuouslyYielding(j, c, y, 0.0, 1e-6);
   const double opening = std::tan(std::atan(0.8) - j.friction) * 1e-6;
   EXPECT_NEAR(c.elasticNormalStress, 1e6 + 1e9 * opening, 1e-6);
   const double f = (1.0 - 0.8e6 / (1e6 * std::tan(j.initialFriction)));
   EXPECT_NEAR(work, 0.8e6 * (1.0 - f) * 1e-6 - 1e6 * opening, 1e-9);
   // Below phi: no dilation.
-  Contact low = cyContactAt(j, 1e6);
+  auto [low, lowState] = cyContactAt(j, 1e6);
   low.shearStress = 0.5e6;
-  updateJointStresses(j, low, 0.0, 1e-6);
+  updateContinuouslyYielding(j, low, lowState, 0.0, 1e-6);
   EXPECT_DOUBLE_EQ(low.elasticNormalStress, 1e6);
   // Any tension opens it.
-  updateJointStresses(j, low, -1.0001e-3, 0.0);
+  updateContinuouslyYielding(j, low, lowState, -1.0001e-3, 0.0);
   EXPECT_TRUE(low.open);
   EXPECT_EQ(low.normalStress, 0.0);
   EXPECT_EQ(low.shearStress, 0.0);
@@ -235,7 +241,7 @@ TEST(JointLaws, ContinuouslyYieldingNormalStiffnessGrowsAsAPowerOfTheNormalStres
   }
   EXPECT_NEAR(cyNormalSpringEnergy(j, sn), energy, 1e-6 * energy);
   // The time step's stiffness is the zero-stress one; the growth is reported.
-  Contact c = cyContactAt(j, 0.0);
+  auto [c, y] = cyContactAt(j, 0.0);
   c.normalStress = c.elasticNormalStress = 9e6;
   EXPECT_DOUBLE_EQ(jointStiffnessGrowth(j, c), 3.0);
 }
