@@ -105,10 +105,12 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     bl.moment[b] -= cross(rb, f);
 
     if (!c.open) {
-      const double growth = jointStiffnessGrowth(j, c);
-      if (growth > 1.0 && growth > totals.stiffnessGrowth) {
-        totals.stiffnessGrowth = growth;
-        totals.stiffestContact = static_cast<int>(i);
+      if (j.law == JointLaw::ContinuouslyYielding && (bl.movesFreely(a) || bl.movesFreely(b))) {
+        const double stiffness = cyStiffness(j, c);
+        if (stiffness > totals.largestGrownStiffness) {
+          totals.largestGrownStiffness = stiffness;
+          totals.stiffestContact = static_cast<int>(i);
+        }
       }
       totals.strainEnergy += energy;
       totals.sumForceMagnitude += std::sqrt(fn * fn + fs * fs);

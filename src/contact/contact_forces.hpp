@@ -13,9 +13,9 @@ struct ContactStepTotals {
   double jointRelease = 0.0;
   double sumForceMagnitude = 0.0;   // over closed contacts, for the unbalanced-force ratio
   int closedContacts = 0;
-  // The largest ratio of a closed contact's stiffness to the one the time step was set from
-  // (above 1 only for stress-dependent joint stiffness), and that contact's index.
-  double stiffnessGrowth = 1.0;
+  // The largest stress-dependent stiffness (continuously yielding law, Pa/m) of a closed contact
+  // on a block that moves freely, and that contact's index (-1 when there is none).
+  double largestGrownStiffness = 0.0;
   int stiffestContact = -1;
 };
 

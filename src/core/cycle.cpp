@@ -74,6 +74,8 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   // The step as a fraction of the critical step of the stiffest joint spring on the lightest
   // free block (kinematic tests, with every block driven, have no such mode).
   contactStepFraction_ = anyFreeRigid ? settings_.frac * dt_ / dtBlocks : 0.0;
+  for (const JointMaterial& j : model_.jointMaterials)
+    if (j.law != JointLaw::PointContact) stepStiffness_ = std::max({stepStiffness_, j.kn, j.ks});
   alpha_ = settings_.adaptiveDamping ? kAdaptiveStart / dt_ : settings_.massDamping;
 
   double scale = 0.0;
@@ -231,11 +233,12 @@ void Cycle::checkEnergy() {
 }
 
 void Cycle::checkStiffnessGrowth(const ContactStepTotals& t) const {
-  // The step was set from the joints' zero-stress stiffness (1.4.7.7); a stiffness grown with
+  // The step was set from the joints' zero-stress stiffness (1.4.7.9); a stiffness grown with
   // the normal stress shrinks the critical step by its square root. Stop at half of it, before
   // the energy monitor would see the growth, with the cause named.
-  if (t.stiffestContact < 0) return;  // no stiffness grew: the step is as FRAC set it
-  const double fraction = contactStepFraction_ * std::sqrt(t.stiffnessGrowth);
+  const double growth = t.largestGrownStiffness / stepStiffness_;
+  if (t.stiffestContact < 0 || growth <= 1.0) return;  // the step is as FRAC set it
+  const double fraction = contactStepFraction_ * std::sqrt(growth);
   if (fraction <= kGrownStiffnessLimit) return;
   const Contact& c = model_.contacts[t.stiffestContact];
   const JointMaterial& j = model_.jointMaterials[c.joint];
@@ -243,11 +246,11 @@ void Cycle::checkStiffnessGrowth(const ContactStepTotals& t) const {
   s << "joint stiffness grown beyond the time step at cycle " << model_.cycle << ", time " << model_.time
     << " s: contact " << t.stiffestContact << " between blocks '" << model_.blocks.name[c.blockA] << "' and '"
     << model_.blocks.name[c.blockB] << "' (joint material '" << j.name << "') carries a normal stress of "
-    << c.normalStress << " Pa, where its stiffness is " << t.stiffnessGrowth
-    << " times the zero-stress kn or ks the step was set from. The step is now " << fraction
+    << c.normalStress << " Pa, where its stiffness, " << t.largestGrownStiffness << " Pa/m, is " << growth
+    << " times the largest zero-stress kn or ks the step was set from. The step is now " << fraction
     << " of the critical step (the limit is " << kGrownStiffnessLimit << "): lower solver.frac below "
-    << settings_.frac * kGrownStiffnessLimit / fraction << ", or raise kn and ks of '" << j.name
-    << "' towards the stiffness reached.";
+    << settings_.frac * kGrownStiffnessLimit / fraction << " (further if the normal stress is still rising), "
+    << "or raise kn and ks of '" << j.name << "' towards the stiffness reached.";
   throw InstabilityError(s.str());
 }
 

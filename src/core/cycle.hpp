@@ -107,6 +107,7 @@ class Cycle {
   ContactDetection detection_;
   double dt_ = 0.0;
   double contactStepFraction_ = 0.0;
+  double stepStiffness_ = 0.0;  // the largest joint stiffness (Pa/m) the rigid-block step was set from
   double largestStepDisplacement_ = 0.0;
   double supplied_ = 0.0;       // initial energy + external work so far
   double largestSupplied_ = 0.0;

@@ -59,12 +59,16 @@ inline double cyNormalStressOfClosure(const JointMaterial& j, double closure) {
 // One step of the continuously yielding law. The joint has no tensile strength and no
 // cohesion. Shear follows dtau = F ks dus (1.4-138) with F = (1 - tau/tau_m) / (1 - r)
 // (1.4-140) towards the bounding strength tau_m = sn tan(phi_eff) sign(dus) (1.4-141); r is
-// tau/tau_m at the last reversal, capped at 0.75. phi_eff decays with the plastic shear
-// displacement (1 - F)|dus| (1.4-142, 1.4-143), integrated exactly over the step (1.4-144), so
-// the decay cannot overshoot phi. Dilation at the angle i = atan(|tau|/sn) - phi where positive
-// (1.4-145), on the whole shear increment, opens the joint; against a held normal displacement
-// it shows as added compression. Returns the energy dissipated per unit length: the plastic
-// work of the shear stress less the work of the dilation against the normal stress.
+// tau/tau_m at the last reversal, capped at 0.75. With tau_m and r held over the step this is a
+// linear equation in tau, integrated exactly: an explicit F would overshoot tau_m, and oscillate
+// about it, wherever one step's elastic increment ks |dus| exceeds (1 - r) |tau_m| (a joint at
+// low normal stress). The tangent stays at most ks (F <= 1). phi_eff decays with the plastic
+// shear displacement (1 - F)|dus| (1.4-142, 1.4-143), applied through the exact solution
+// (1.4-144), so it cannot overshoot phi. Dilation at the angle i = atan(|tau|/sn) - phi where
+// positive (1.4-145) accompanies the plastic shear displacement, as the slip of the Coulomb
+// joint's dilation does; against a held normal displacement it shows as added compression.
+// Returns the energy dissipated per unit length: the plastic work of the shear stress less the
+// work of the dilation against the normal stress, sn dus_p (tan(phi + i) - tan i) >= 0.
 inline double updateContinuouslyYielding(const JointMaterial& j, Contact& c, YieldingState& y, double dun,
                                          double dus) {
   c.elasticNormalStress += cyNormalStiffness(j, std::max(c.elasticNormalStress, 0.0)) * dun;
@@ -72,30 +76,38 @@ inline double updateContinuouslyYielding(const JointMaterial& j, Contact& c, Yie
   c.open = c.elasticNormalStress < 0.0;
   if (c.open) {
     c.normalStress = c.shearStress = 0.0;
+    // Reclosed, the joint starts again from zero shear stress: no reversal to remember.
+    y.reversalRatio = 0.0;
+    y.shearDirection = 0;
     return 0.0;
   }
   const double sn = c.normalStress = c.elasticNormalStress;
   if (dus == 0.0 || sn == 0.0) return 0.0;
   const std::int8_t direction = dus > 0.0 ? 1 : -1;
-  const double boundingStrength = direction * sn * std::tan(y.effectiveFriction);
+  const double strength = sn * std::tan(y.effectiveFriction);
+  const double target = direction * strength;  // tau_m
   if (y.shearDirection != 0 && direction != y.shearDirection)
-    y.reversalRatio = std::min(c.shearStress / boundingStrength, 0.75);
+    y.reversalRatio = std::min(c.shearStress / target, 0.75);
   y.shearDirection = direction;
+  const double ks = cyShearStiffness(j, sn), path = std::abs(dus);
   const double tau = c.shearStress;
-  const double f = (1.0 - tau / boundingStrength) / (1.0 - y.reversalRatio);
-  c.shearStress = tau + f * cyShearStiffness(j, sn) * dus;
-  const double plastic = (1.0 - f) * std::abs(dus);
+  // dtau/ds = ks (tau_m - tau) / ((1 - r) |tau_m|) along the path length s.
+  double next = target + (tau - target) * std::exp(-ks * path / ((1.0 - y.reversalRatio) * strength));
+  if (direction * (next - tau) > ks * path) next = tau + direction * ks * path;  // F <= 1
+  c.shearStress = next;
+  const double plastic = std::max(0.0, path - direction * (next - tau) / ks);
   y.plasticShear += plastic;
   y.effectiveFriction = j.friction + (y.effectiveFriction - j.friction) * std::exp(-plastic / j.roughness);
-  const double dilationAngle = std::atan(std::abs(tau) / sn) - j.friction;
+  const double meanTau = 0.5 * (tau + next);
+  const double dilationAngle = std::atan(std::abs(meanTau) / sn) - j.friction;
   double dilationWork = 0.0;
   if (dilationAngle > 0.0) {
-    const double opening = std::tan(dilationAngle) * std::abs(dus);
+    const double opening = std::tan(dilationAngle) * plastic;
     c.elasticNormalStress += cyNormalStiffness(j, sn) * opening;
     dilationWork = sn * opening;
   }
   c.slipping = plastic > 0.0;
-  return tau * direction * plastic - dilationWork;
+  return meanTau * direction * plastic - dilationWork;
 }
 
 // Energy stored in a closed contact's springs per unit length (times the weight, J/m).
@@ -106,10 +118,10 @@ inline double jointSpringEnergy(const JointMaterial& j, const Contact& c) {
   return 0.5 * (c.normalStress * c.normalStress / j.kn + c.shearStress * c.shearStress / j.ks);
 }
 
-// How far the contact's stiffness has grown above the one the time step was set from.
-inline double jointStiffnessGrowth(const JointMaterial& j, const Contact& c) {
-  if (j.law != JointLaw::ContinuouslyYielding) return 1.0;
-  return std::max(cyNormalStiffness(j, c.normalStress) / j.kn, cyShearStiffness(j, c.normalStress) / j.ks);
+// The larger of a continuously yielding contact's normal and shear stiffness at its present
+// normal stress (Pa/m).
+inline double cyStiffness(const JointMaterial& j, const Contact& c) {
+  return std::max(cyNormalStiffness(j, c.normalStress), cyShearStiffness(j, c.normalStress));
 }
 
 // Updates c.elasticNormalStress, c.normalStress, c.shearStress and the state flags for the
