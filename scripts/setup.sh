@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(
   cmake g++ make git
-  libeigen3-dev libcgal-dev libgtest-dev libbenchmark-dev
+  libeigen3-dev libcgal-dev libboost-dev libgtest-dev libbenchmark-dev
   libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libssl-dev
   python3-numpy python3-scipy python3-matplotlib python3-pytest
 )
