@@ -68,7 +68,9 @@ inline double cyNormalStressOfClosure(const JointMaterial& j, double closure) {
 // positive (1.4-145) accompanies the plastic shear displacement, as the slip of the Coulomb
 // joint's dilation does; against a held normal displacement it shows as added compression.
 // Returns the energy dissipated per unit length: the plastic work of the shear stress less the
-// work of the dilation against the normal stress, sn dus_p (tan(phi + i) - tan i) >= 0.
+// work of the dilation against the normal stress, sn dus_p (tan(phi + i) - tan i), which is
+// positive whenever the shear stress acts along the shearing (not just after a reversal,
+// while tau still has the old sign).
 inline double updateContinuouslyYielding(const JointMaterial& j, Contact& c, YieldingState& y, double dun,
                                          double dus) {
   c.elasticNormalStress += cyNormalStiffness(j, std::max(c.elasticNormalStress, 0.0)) * dun;
