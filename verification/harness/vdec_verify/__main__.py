@@ -61,6 +61,9 @@ def command_run(args):
     if not entries:
         return _usage_error(f"no problems in {problems} match level {args.level} and filter {args.filter or '(none)'}")
     out = Path(args.out)
+    # References that run a program of their own (the 50-digit CY joint reference) find it
+    # beside the vdec executable the build put it next to.
+    os.environ.setdefault("VDEC_EXECUTABLE", str(vdec.resolve()))
     records = run_suite(entries, vdec.resolve(), out, args.jobs, level=args.level)
     write_reports(records, out, level=args.level)
     print_table(records)
