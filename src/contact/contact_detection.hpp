@@ -1,5 +1,5 @@
 #pragma once
-// Contact detection: a sort-and-sweep broad phase over block bounding boxes, then the rounded-
+// Contact detection: a uniform-grid broad phase over block bounding boxes, then the rounded-
 // corner narrow phase for each candidate pair. Detection runs only when blocks may have moved
 // far enough to make or break a contact: when some vertex has moved more than half the contact
 // tolerance from where the last scan saw it, since until then no pair can have closed a gap
@@ -29,7 +29,7 @@ class ContactDetection {
   std::vector<double> scanRotation_;
   std::vector<Vec2> scanGridpoint_;
   int scans_ = 0;
-  std::vector<int> order_;  // blocks sorted by bounding-box minimum x, reused between scans
+  std::vector<int> cellStart_, cellBlocks_, cellFill_;  // the broad phase's grid, reused between scans
   std::vector<double> minX_, maxX_, minY_, maxY_;
 };
 

@@ -54,12 +54,13 @@ FeatureHit trackFeature(const Model& m, Contact& c) {
 
 }  // namespace
 
-ContactStepTotals computeContactForces(Model& m, double dt) {
+ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) {
   ContactStepTotals totals;
   Blocks& bl = m.blocks;
   const double overlapLimit = 0.5 * m.roundingLength;
   for (std::size_t i = 0; i < m.contacts.size(); ++i) {
     Contact& c = m.contacts[i];
+    if (c.open && motionClock < c.closableAt) continue;
     const FeatureHit hit = trackFeature(m, c);
     const double dun = hit.overlap - c.overlap;  // closing positive
     c.feature = hit.feature;
@@ -96,6 +97,13 @@ ContactStepTotals computeContactForces(Model& m, double dt) {
     totals.jointRelease += work - (energy - energyBefore) - weightBefore * slip;
     c.normalDisplacement += dun;
     c.shearDisplacement += dus;
+    if (c.open) {
+      // Two points of the blocks approach by at most twice the largest vertex displacement, so
+      // the joint cannot close (its normal spring reach zero stress) before the clock has moved
+      // half the remaining closure on.
+      // (An open spring is in its zero-stress stiffness kn for every law.)
+      c.closableAt = motionClock + 0.5 * (-c.elasticNormalStress / j.kn);
+    }
 
     // Force on A from B; the shear force resists A's motion along the tangent.
     const Vec2 f = fn * c.normal - fs * tangent;

@@ -20,6 +20,10 @@ struct ContactStepTotals {
 };
 
 // Throws OverlapError naming the contact when an overlap exceeds half the rounding length.
-ContactStepTotals computeContactForces(Model& model, double dt);
+// motionClock: the running sum of each step's largest vertex displacement so far. An open
+// contact whose gap is too wide to close before the clock reaches its closableAt is skipped:
+// it carries no force, and its joint state, kept in displacement differences, is brought up to
+// date whenever it is next evaluated (the shear displacement it records accrues only then).
+ContactStepTotals computeContactForces(Model& model, double dt, double motionClock);
 
 }  // namespace vdec

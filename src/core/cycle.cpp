@@ -127,11 +127,13 @@ void Cycle::buildStages() {
   if (hasContacts_) {
     stages_.push_back({"contact-detection", [this] {
                          if (model_.cycle > 0) detection_.update(model_, largestStepDisplacement_);
+                         motionClock_ += largestStepDisplacement_;
                        }});
     stages_.push_back({"contact-forces", [this] {
                          // As for the zones: before the first step no motion has happened
                          // for the initial velocities, v(-dt/2), to have displaced the joints.
-                         const ContactStepTotals t = computeContactForces(model_, model_.cycle == 0 ? 0.0 : dt_);
+                         const ContactStepTotals t =
+                             computeContactForces(model_, model_.cycle == 0 ? 0.0 : dt_, motionClock_);
                          checkStiffnessGrowth(t);
                          step_.strainEnergy += t.strainEnergy;
                          energy_.jointRelease += t.jointRelease;

@@ -109,6 +109,7 @@ class Cycle {
   double contactStepFraction_ = 0.0;
   double stepStiffness_ = 0.0;  // the largest joint stiffness (Pa/m) the rigid-block step was set from
   double largestStepDisplacement_ = 0.0;
+  double motionClock_ = 0.0;  // running sum of largestStepDisplacement_, for skipping open contacts
   double supplied_ = 0.0;       // initial energy + external work so far
   double largestSupplied_ = 0.0;
   double energyFloor_ = 0.0;    // below this the balance is round-off

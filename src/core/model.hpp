@@ -182,6 +182,9 @@ struct Contact {
   double normalDisplacement = 0.0;   // accumulated, closing positive
   double shearDisplacement = 0.0;    // accumulated, along t
   double slipDissipation = 0.0;      // J/m
+  // The reading of the motion clock (the running sum of the largest vertex displacement of each
+  // step) below which an open contact cannot have closed: it is not evaluated until then.
+  double closableAt = 0.0;
   bool open = false;        // separated, or broken in tension and not closed again
   bool intact = true;       // model #5: cohesion and tensile strength not yet destroyed
   bool slipping = false;
