@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "contact/broad_phase.hpp"
 #include "contact/contact_geometry.hpp"
 #include "core/errors.hpp"
 #include "joint/joint_laws.hpp"
@@ -37,57 +38,7 @@ std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m
   // Deformable blocks have no contact vertices yet; their gridpoints give their boxes, so that
   // one coming near another block is caught rather than passing through it unseen.
   for (int i = 0; i < m.gridpoints.size(); ++i) extend(m.gridpoints.block[i], m.gridpoints.position[i]);
-  // A uniform grid of cells the size of a typical block (the median box extent): each block is
-  // listed in the cells its box overlaps, and a pair is tested only in the cell holding the
-  // lower-left corner of the two boxes' intersection, so that it is found once. A sweep along
-  // one axis would compare every block with a whole column of a regular lattice.
-  std::vector<double> extent(n);
-  double loX = INFINITY, loY = INFINITY, hiX = -INFINITY, hiY = -INFINITY;
-  for (int b = 0; b < n; ++b) {
-    extent[b] = std::max(maxX_[b] - minX_[b], maxY_[b] - minY_[b]);
-    loX = std::min(loX, minX_[b]);
-    loY = std::min(loY, minY_[b]);
-    hiX = std::max(hiX, maxX_[b]);
-    hiY = std::max(hiY, maxY_[b]);
-  }
-  std::nth_element(extent.begin(), extent.begin() + n / 2, extent.end());
-  double cell = std::max(extent[n / 2], 1e-300);
-  // A few huge blocks among tiny ones must not make the grid huge: at most about 4 cells a block.
-  const double area = (hiX - loX) * (hiY - loY);
-  cell = std::max(cell, std::sqrt(area / (4.0 * n)));
-  const int nx = std::max(1, static_cast<int>((hiX - loX) / cell) + 1);
-  const int ny = std::max(1, static_cast<int>((hiY - loY) / cell) + 1);
-  auto column = [&](double x) { return std::clamp(static_cast<int>((x - loX) / cell), 0, nx - 1); };
-  auto row = [&](double y) { return std::clamp(static_cast<int>((y - loY) / cell), 0, ny - 1); };
-  cellStart_.assign(static_cast<std::size_t>(nx) * ny + 1, 0);
-  for (int pass = 0; pass < 2; ++pass) {
-    for (int b = 0; b < n; ++b)
-      for (int iy = row(minY_[b]); iy <= row(maxY_[b]); ++iy)
-        for (int ix = column(minX_[b]); ix <= column(maxX_[b]); ++ix) {
-          const std::size_t c = static_cast<std::size_t>(iy) * nx + ix;
-          if (pass == 0) ++cellStart_[c + 1];
-          else cellBlocks_[cellFill_[c]++] = b;
-        }
-    if (pass == 0) {
-      for (std::size_t c = 0; c + 1 < cellStart_.size(); ++c) cellStart_[c + 1] += cellStart_[c];
-      cellBlocks_.resize(cellStart_.back());
-      cellFill_.assign(cellStart_.begin(), cellStart_.end() - 1);
-    }
-  }
-  std::vector<std::pair<int, int>> pairs;
-  for (std::size_t c = 0; c + 1 < cellStart_.size(); ++c) {
-    const int ix = static_cast<int>(c % nx), iy = static_cast<int>(c / nx);
-    for (int i = cellStart_[c]; i < cellStart_[c + 1]; ++i) {
-      const int a = cellBlocks_[i];
-      for (int k = i + 1; k < cellStart_[c + 1]; ++k) {
-        const int b = cellBlocks_[k];
-        if (minX_[b] > maxX_[a] || minX_[a] > maxX_[b] || minY_[b] > maxY_[a] || minY_[a] > maxY_[b]) continue;
-        if (column(std::max(minX_[a], minX_[b])) != ix || row(std::max(minY_[a], minY_[b])) != iy) continue;
-        pairs.emplace_back(std::min(a, b), std::max(a, b));
-      }
-    }
-  }
-  return pairs;
+  return overlappingPairs(minX_, maxX_, minY_, maxY_, grid_);
 }
 
 void ContactDetection::scan(Model& m) {

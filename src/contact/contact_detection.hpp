@@ -6,6 +6,7 @@
 // larger than the tolerance.
 #include <vector>
 
+#include "contact/broad_phase.hpp"
 #include "core/model.hpp"
 
 namespace vdec {
@@ -29,7 +30,7 @@ class ContactDetection {
   std::vector<double> scanRotation_;
   std::vector<Vec2> scanGridpoint_;
   int scans_ = 0;
-  std::vector<int> cellStart_, cellBlocks_, cellFill_;  // the broad phase's grid, reused between scans
+  BroadPhaseGrid grid_;
   std::vector<double> minX_, maxX_, minY_, maxY_;
 };
 
