@@ -67,11 +67,6 @@ void ContactDetection::scan(Model& m) {
                                                                             : nullptr;
   };
 
-  struct Candidate {
-    int corner, blockA, blockB;
-    FeatureHit hit;
-    const Contact* existing;  // the contact with this key before the scan, if any
-  };
   // Neighbours per block, ascending, so that walking blocks, their corners and then their
   // neighbours produces candidates already in key order (corner, block B).
   const auto pairs = candidatePairs(m);
@@ -98,7 +93,10 @@ void ContactDetection::scan(Model& m) {
     // Ascending, whatever order the broad phase found the pairs in.
     for (int b = 0; b < n; ++b) std::sort(neighbours.begin() + neighbourStart[b], neighbours.begin() + neighbourStart[b + 1]);
   }
-  std::vector<Candidate> found;
+  // The scan's big lists reuse the buffers of the previous scan: fresh ones, megabytes for a
+  // large model, would be faulted in page by page every time.
+  std::vector<Candidate>& found = found_;
+  found.clear();
   // A corner within the tolerance of B has its vertex within tolerance + d of B's polygon (the
   // rounded tip lies less than d inside the vertex): a box test rejects the others cheaply.
   const double reach = m.contactTolerance + m.roundingLength - 0.5 * m.contactTolerance;
@@ -132,12 +130,13 @@ void ContactDetection::scan(Model& m) {
   // new ones, the one owned by the lower vertex id.
   const bool initial = m.cycle == 0;
   const double touching = 1e-6 * m.roundingLength;
-  std::vector<Contact> kept;
+  std::vector<Contact> kept = std::move(spareContacts_);
+  kept.clear();
   kept.reserve(found.size());
   const bool yielding = m.hasYieldingJoints();
-  std::vector<YieldingState> keptStates;
+  std::vector<YieldingState> keptStates = std::move(spareStates_);
+  keptStates.clear();
   if (yielding) keptStates.reserve(found.size());
-  std::vector<char> carried(previous.size(), 0);
   for (const Candidate& f : found) {
     if (f.hit.kind == FeatureKind::Corner) {
       if (const Candidate* reverse = findFound(f.hit.feature, f.blockA)) {
@@ -149,7 +148,6 @@ void ContactDetection::scan(Model& m) {
     }
     // Carry the state of a contact that persists.
     if (const Contact* old = f.existing) {
-      carried[old - previous.data()] = 1;
       kept.push_back(*old);
       if (yielding) keptStates.push_back(m.yieldingStates[old - previous.data()]);
       continue;
@@ -163,7 +161,6 @@ void ContactDetection::scan(Model& m) {
     c.blockB = f.blockB;
     c.feature = f.hit.feature;
     c.featureKind = f.hit.kind;
-    c.normal = f.hit.normal;
     c.overlap = f.hit.overlap;
     c.joint = m.jointMaterialFor(c.blockA, c.blockB);
     const JointMaterial& j = m.jointMaterials[c.joint];
@@ -188,8 +185,8 @@ void ContactDetection::scan(Model& m) {
     kept.push_back(c);
     if (yielding) keptStates.push_back({j.initialFriction});
   }
-  for (std::size_t i = 0; i < previous.size(); ++i)
-    if (!carried[i]) m.deletedSlipDissipation += previous[i].slipDissipation;
+  spareContacts_ = std::move(m.contacts);
+  spareStates_ = std::move(m.yieldingStates);
   m.contacts = std::move(kept);
   m.yieldingStates = std::move(keptStates);
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "contact/broad_phase.hpp"
+#include "contact/contact_geometry.hpp"
 #include "core/model.hpp"
 
 namespace vdec {
@@ -31,6 +32,14 @@ class ContactDetection {
   std::vector<Vec2> scanGridpoint_;
   int scans_ = 0;
   BroadPhaseGrid grid_;
+  struct Candidate {
+    int corner, blockA, blockB;
+    FeatureHit hit;
+    const Contact* existing;  // the contact with this key before the scan, if any
+  };
+  std::vector<Candidate> found_;        // buffers reused from scan to scan
+  std::vector<Contact> spareContacts_;
+  std::vector<YieldingState> spareStates_;
   std::vector<double> minX_, maxX_, minY_, maxY_;
 };
 

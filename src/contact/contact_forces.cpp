@@ -65,7 +65,6 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
     const double dun = hit.overlap - c.overlap;  // closing positive
     c.feature = hit.feature;
     c.featureKind = hit.kind;
-    c.normal = hit.normal;
     c.overlap = hit.overlap;
     if (c.overlap > overlapLimit) reportOverlap(m, c, i);
 
@@ -74,7 +73,7 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
     // Velocities are those of the half step just ended, so v dt is this step's increment.
     const Vec2 va = bl.velocity[a] + bl.angularVelocity[a] * perp(ra);
     const Vec2 vb = bl.velocity[b] + bl.angularVelocity[b] * perp(rb);
-    const Vec2 tangent{c.normal.y, -c.normal.x};
+    const Vec2 tangent{hit.normal.y, -hit.normal.x};
     const double dus = dot(va - vb, tangent) * dt;
 
     const JointMaterial& j = m.jointMaterials[c.joint];
@@ -88,7 +87,7 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
     if (!c.open) c.length = contactLength(m, c.corner, hit);
     const double weight = contactWeight(j, c);
     const double fn = weight * c.normalStress, fs = weight * c.shearStress;
-    c.slipDissipation += weightBefore * slip;
+    totals.slipDissipation += weightBefore * slip;
     // Energy account of the contact over the step: the work of its forces on the displacement
     // increments (trapezoidal) is what its springs stored, what slip dissipated, and the rest,
     // which the joint released without work.
@@ -106,7 +105,7 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
     }
 
     // Force on A from B; the shear force resists A's motion along the tangent.
-    const Vec2 f = fn * c.normal - fs * tangent;
+    const Vec2 f = fn * hit.normal - fs * tangent;
     bl.force[a] += f;
     bl.moment[a] += cross(ra, f);
     bl.force[b] -= f;

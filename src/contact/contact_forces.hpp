@@ -12,6 +12,7 @@ struct ContactStepTotals {
   // tension, shear stress lost with cohesion (model 5), stress carried over a changed length.
   double jointRelease = 0.0;
   double sumForceMagnitude = 0.0;   // over closed contacts, for the unbalanced-force ratio
+  double slipDissipation = 0.0;     // by slip in the step, net of dilation (J/m)
   int closedContacts = 0;
   // The largest stress-dependent stiffness (continuously yielding law, Pa/m) of a closed contact
   // on a block that moves freely, and that contact's index (-1 when there is none).

@@ -167,13 +167,14 @@ double contactLength(const Model& m, int corner, const FeatureHit& hit) {
       const Vec2 origin = vx.position[e], along = vx.edgeDirection[e], out = outward(along);
       const double sHere = dot(here - origin, along), sFar = dot(far - origin, along);
       if (sHere == sFar) continue;
+      const double perUnitAlong = 1.0 / (sFar - sHere);
       // A's edge from `here` to `far`, clipped to B's edge; it shares the face when its clipped
       // far end is within the contact tolerance of B's edge line.
       const double c0 = std::clamp(sHere, 0.0, vx.edgeLength[e]), c1 = std::clamp(sFar, 0.0, vx.edgeLength[e]);
       const double gapHere = dot(here - origin, out), gapFar = dot(far - origin, out);
-      const double gapAtClippedFar = gapHere + (gapFar - gapHere) * (c1 - sHere) / (sFar - sHere);
+      const double gapAtClippedFar = gapHere + (gapFar - gapHere) * (c1 - sHere) * perUnitAlong;
       if (std::abs(gapAtClippedFar) > m.contactTolerance) continue;
-      share = std::max(share, 0.5 * std::abs(c1 - c0) * edgeLength / std::abs(sFar - sHere));
+      share = std::max(share, 0.5 * std::abs((c1 - c0) * perUnitAlong) * edgeLength);
     }
     length += share;
   }

@@ -33,10 +33,11 @@ FeatureHit followFeature(const Model& model, int corner, int blockB, int feature
 // edge's line); the rounding length d for a corner touching alone.
 double contactLength(const Model& model, int corner, const FeatureHit& hit);
 
-// Where a contact's force acts: midway between the two surfaces along the normal, which for
-// every feature kind is the corner's arc centre less (arc radius - overlap / 2) along the normal.
-inline Vec2 contactPoint(const Model& model, const Contact& c) {
-  return model.vertices.arcCentre[c.corner] - (model.vertices.arcRadius[c.corner] - 0.5 * c.overlap) * c.normal;
+// A contact's geometry at the blocks' present positions: normal (from B towards A), the point
+// where its force acts (midway between the two surfaces) and the overlap. The contact stage
+// forms the same from the positions at the start of each step; outputs use this.
+inline FeatureHit contactGeometry(const Model& model, const Contact& c) {
+  return followFeature(model, c.corner, c.blockB, c.feature, c.featureKind);
 }
 
 }  // namespace vdec

@@ -137,6 +137,7 @@ void Cycle::buildStages() {
                          checkStiffnessGrowth(t);
                          step_.strainEnergy += t.strainEnergy;
                          energy_.jointRelease += t.jointRelease;
+                         energy_.slipDissipation += t.slipDissipation;
                          step_.forceScaleSum += t.sumForceMagnitude;
                          step_.forceCount += t.closedContacts;
                        }});
@@ -336,8 +337,6 @@ RunReport Cycle::run() {
   report.histories = histories_;
   energy_.kinetic = kineticEnergy_;
   energy_.strain = strainEnergy_;
-  energy_.slipDissipation = model_.deletedSlipDissipation;
-  for (const Contact& c : model_.contacts) energy_.slipDissipation += c.slipDissipation;
   report.energy = energy_;
   // Strain and kinetic energy are those of the positions the last step started from; the work of
   // that step (done over the motion it produced) comes after them.

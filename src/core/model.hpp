@@ -173,7 +173,6 @@ struct Contact {
   int feature = -1;         // vertex id on B: edge (feature, next) or corner `feature`
   FeatureKind featureKind = FeatureKind::Edge;
   int joint = -1;           // joint material
-  Vec2 normal;              // unit, from B towards A
   double overlap = 0.0;     // geometric, positive when the rounded shapes interpenetrate
   double length = 0.0;      // contact length L (1.3-2), m
   double elasticNormalStress = 0.0;  // what the normal spring alone would carry (< 0 in tension or open)
@@ -181,7 +180,6 @@ struct Contact {
   double shearStress = 0.0;          // tau, along tangent t = (n.y, -n.x)
   double normalDisplacement = 0.0;   // accumulated, closing positive
   double shearDisplacement = 0.0;    // accumulated, along t
-  double slipDissipation = 0.0;      // J/m
   // The reading of the motion clock (the running sum of the largest vertex displacement of each
   // step) below which an open contact cannot have closed: it is not evaluated until then.
   double closableAt = 0.0;
@@ -232,7 +230,6 @@ struct Model {
       if (j.law == JointLaw::ContinuouslyYielding) return true;
     return false;
   }
-  double deletedSlipDissipation = 0.0;  // J/m, by contacts that no longer exist
   // Joint material per unordered block pair where the scene assigns one; else defaultJoint.
   std::vector<std::pair<std::pair<int, int>, int>> jointAssignments;
   int defaultJoint = -1;

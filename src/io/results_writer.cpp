@@ -148,7 +148,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
   json contacts = json::array();
   for (std::size_t i = 0; i < m.contacts.size(); ++i) {
     const Contact& c = m.contacts[i];
-    const Vec2 point = contactPoint(m, c);
+    const FeatureHit geometry = contactGeometry(m, c);
+    const Vec2 point = geometry.point;
     contacts.push_back({{"block_a", m.blocks.name[c.blockA]},
                         {"corner", c.corner - m.blocks.firstVertex[c.blockA]},
                         {"block_b", m.blocks.name[c.blockB]},
@@ -156,7 +157,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                         {"joint", m.jointMaterials[c.joint].name},
                         {"law", jointLawName(m.jointMaterials[c.joint].law)},
                         {"point", {point.x, point.y}},
-                        {"normal", {c.normal.x, c.normal.y}},
+                        {"normal", {geometry.normal.x, geometry.normal.y}},
                         {"length", c.length},
                         {"overlap", c.overlap},
                         {"normal_force", m.normalForce(c)},

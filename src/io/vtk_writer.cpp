@@ -68,7 +68,7 @@ Grid collect(const Model& m) {
   }
   for (const Contact& c : m.contacts) {
     g.cells.push_back({static_cast<int>(g.points.size())});
-    g.points.push_back(contactPoint(m, c));
+    g.points.push_back(contactGeometry(m, c).point);
     g.displacement.push_back({});
     g.velocity.push_back({});
     g.types.push_back(kVertex);

@@ -117,7 +117,8 @@ inline double jointSpringEnergy(const JointMaterial& j, const Contact& c) {
   if (j.law == JointLaw::ContinuouslyYielding)
     return cyNormalSpringEnergy(j, c.normalStress) +
            0.5 * c.shearStress * c.shearStress / cyShearStiffness(j, c.normalStress);
-  return 0.5 * (c.normalStress * c.normalStress / j.kn + c.shearStress * c.shearStress / j.ks);
+  // One division: this runs twice per contact and step.
+  return 0.5 * (c.normalStress * c.normalStress * j.ks + c.shearStress * c.shearStress * j.kn) / (j.kn * j.ks);
 }
 
 // The larger of a continuously yielding contact's normal and shear stiffness at its present

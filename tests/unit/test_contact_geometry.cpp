@@ -44,7 +44,7 @@ TEST(ContactGeometry, EdgeToEdgeContactIsTwoCornerEdgeContactsOfHalfLength) {
   for (const Contact& c : m.contacts) {
     EXPECT_EQ(c.blockA, 1);
     EXPECT_EQ(c.featureKind, FeatureKind::Edge);
-    EXPECT_NEAR(c.normal.y, 1.0, 1e-15);
+    EXPECT_NEAR(contactGeometry(m, c).normal.y, 1.0, 1e-15);
     EXPECT_NEAR(c.overlap, 0.0, 1e-15);
     const FeatureHit hit = nearestFeature(m, c.corner, c.blockB);
     EXPECT_NEAR(contactLength(m, c.corner, hit), 0.5, 1e-12);
@@ -133,7 +133,7 @@ vertices = [[0.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]]
   detection.initialise(s.model);
   EXPECT_EQ(s.model.contacts.size(), 2u);
   double length = 0.0;
-  for (const Contact& c : s.model.contacts) length += c.length > 0 ? c.length : contactLength(s.model, c.corner, {c.feature, c.featureKind, c.normal, contactPoint(s.model, c), c.overlap});
+  for (const Contact& c : s.model.contacts) length += c.length > 0 ? c.length : contactLength(s.model, c.corner, contactGeometry(s.model, c));
   EXPECT_NEAR(length, 1.0, 1e-9);
 }
 
