@@ -41,12 +41,21 @@ std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m
   return overlappingPairs(minX_, maxX_, minY_, maxY_, grid_);
 }
 
-void ContactDetection::scan(Model& m) {
+void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
   ++scans_;
-  motionSinceScan_ = 0.0;
-  scanCentroid_ = m.blocks.centroid;
-  scanRotation_ = m.blocks.rotation;
-  scanGridpoint_ = m.gridpoints.position;
+  const int n = m.blocks.size();
+  auto rescanned = [moved](int b) { return moved == nullptr || (*moved)[b] != 0; };
+  // The rescanned blocks' positions become the reference their later motion is measured from.
+  scanCentroid_.resize(n);
+  scanRotation_.resize(n);
+  scanGridpoint_.resize(m.gridpoints.size());
+  for (int b = 0; b < n; ++b) {
+    if (!rescanned(b)) continue;
+    scanCentroid_[b] = m.blocks.centroid[b];
+    scanRotation_[b] = m.blocks.rotation[b];
+  }
+  for (int i = 0; i < m.gridpoints.size(); ++i)
+    if (rescanned(m.gridpoints.block[i])) scanGridpoint_[i] = m.gridpoints.position[i];
   // Contacts persist by key (corner, block B); the previous list is looked up through a sorted
   // index so that the contacts themselves are not moved.
   const std::vector<Contact>& previous = m.contacts;
@@ -68,9 +77,12 @@ void ContactDetection::scan(Model& m) {
   };
 
   // Neighbours per block, ascending, so that walking blocks, their corners and then their
-  // neighbours produces candidates already in key order (corner, block B).
-  const auto pairs = candidatePairs(m);
-  const int n = m.blocks.size();
+  // neighbours produces candidates already in key order (corner, block B). A partial scan
+  // looks only at the pairs with a rescanned block; the others keep their contacts as they are.
+  auto pairs = candidatePairs(m);
+  if (moved != nullptr)
+    pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [&](const auto& p) { return !rescanned(p.first) && !rescanned(p.second); }),
+                pairs.end());
   for (const auto& [a, b] : pairs) {
     if (!m.blocks.deformable[a] && !m.blocks.deformable[b]) continue;
     throw GeometryError("block '" + m.blocks.name[m.blocks.deformable[a] ? a : b] + "' is deformable and its bounding "
@@ -185,6 +197,30 @@ void ContactDetection::scan(Model& m) {
     kept.push_back(c);
     if (yielding) keptStates.push_back({j.initialFriction});
   }
+  if (moved != nullptr) {
+    // The contacts between blocks neither of which was rescanned stay as they were. Both lists
+    // are in key order; merged, the result is too.
+    std::vector<Contact>& merged = mergedContacts_;
+    std::vector<YieldingState>& mergedStates = mergedStates_;
+    merged.clear();
+    mergedStates.clear();
+    std::size_t k = 0;
+    auto takeKept = [&] {
+      merged.push_back(kept[k]);
+      if (yielding) mergedStates.push_back(keptStates[k]);
+      ++k;
+    };
+    for (const auto& [key, index] : previousIndex) {
+      const Contact& old = previous[index];
+      if (rescanned(old.blockA) || rescanned(old.blockB)) continue;
+      while (k < kept.size() && Key{kept[k].corner, kept[k].blockB} < key) takeKept();
+      merged.push_back(old);
+      if (yielding) mergedStates.push_back(m.yieldingStates[index]);
+    }
+    while (k < kept.size()) takeKept();
+    std::swap(kept, merged);
+    std::swap(keptStates, mergedStates);
+  }
   spareContacts_ = std::move(m.contacts);
   spareStates_ = std::move(m.yieldingStates);
   m.contacts = std::move(kept);
@@ -217,6 +253,8 @@ bool edgesCross(const Model& m, int a, int b, double touching) {
 
 void ContactDetection::initialise(Model& m) {
   scan(m);
+  motionSinceScan_ = 0.0;
+  margin_ = 0.5 * m.contactTolerance;
   const double touching = 1e-6 * m.roundingLength;
   for (const auto& [a, b] : candidatePairs(m)) {
     if (!edgesCross(m, a, b, touching)) continue;
@@ -225,26 +263,51 @@ void ContactDetection::initialise(Model& m) {
   }
 }
 
-double ContactDetection::largestDisplacementSinceScan(const Model& m) const {
+void ContactDetection::measureDisplacements(const Model& m) {
   // A vertex of a rigid block is displaced by at most |dc| + |dtheta| R: the centroid's move
-  // plus the chord of the rotation about it.
+  // plus the chord of the rotation about it; a deformable block by its gridpoints' largest.
   const Blocks& bl = m.blocks;
-  double largest = 0.0;
+  displacement_.assign(bl.size(), 0.0);
   for (int b = 0; b < bl.size(); ++b)
-    largest = std::max(largest, norm(bl.centroid[b] - scanCentroid_[b]) +
-                                    std::abs(bl.rotation[b] - scanRotation_[b]) * bl.boundingRadius[b]);
-  for (int i = 0; i < m.gridpoints.size(); ++i)
-    largest = std::max(largest, norm(m.gridpoints.position[i] - scanGridpoint_[i]));
-  return largest;
+    displacement_[b] = norm(bl.centroid[b] - scanCentroid_[b]) + std::abs(bl.rotation[b] - scanRotation_[b]) * bl.boundingRadius[b];
+  for (int i = 0; i < m.gridpoints.size(); ++i) {
+    const int b = m.gridpoints.block[i];
+    displacement_[b] = std::max(displacement_[b], norm(m.gridpoints.position[i] - scanGridpoint_[i]));
+  }
 }
 
 void ContactDetection::update(Model& m, double largestStepDisplacement) {
-  // The path travelled bounds the displacement and costs nothing; only once it passes the
-  // limit is the displacement itself measured, so that blocks vibrating in place (a lattice
-  // at rest, undamped) do not trigger scans.
+  // Each block is rescanned once one of its vertices has moved half the tolerance from where
+  // its last scan saw it: a pair of blocks then cannot have approached by more than the
+  // tolerance since the later of their two scans, which saw them both. The path travelled by
+  // the fastest vertex bounds every block's further motion and costs nothing, so the
+  // displacements are measured only when it has used up the margin left at the last measure.
   motionSinceScan_ += largestStepDisplacement;
+  if (motionSinceScan_ <= margin_ && requested_.empty()) return;
   const double limit = 0.5 * m.contactTolerance;
-  if (motionSinceScan_ > limit && largestDisplacementSinceScan(m) > limit) scan(m);
+  measureDisplacements(m);
+  moved_.assign(m.blocks.size(), 0);
+  const bool due = *std::max_element(displacement_.begin(), displacement_.end()) > limit || !requested_.empty();
+  for (const int b : requested_) moved_[b] = 1;
+  requested_.clear();
+  // Once a scan is due, every block past half the limit goes with it: blocks move at similar
+  // speeds, and rescanning each as it alone crosses the limit would scan at every step.
+  int count = 0;
+  for (int b = 0; due && b < m.blocks.size(); ++b) {
+    if (displacement_[b] > 0.5 * limit) moved_[b] = 1;
+    count += moved_[b];
+  }
+  if (2 * count > m.blocks.size()) {  // most blocks: one full scan costs less bookkeeping
+    scan(m);
+    moved_.assign(m.blocks.size(), 1);
+  } else if (count > 0) {
+    scan(m, &moved_);
+  }
+  double largest = 0.0;
+  for (int b = 0; b < m.blocks.size(); ++b)
+    if (!moved_[b]) largest = std::max(largest, displacement_[b]);
+  motionSinceScan_ = 0.0;
+  margin_ = limit - largest;
 }
 
 }  // namespace vdec

@@ -19,15 +19,22 @@ class ContactDetection {
   void initialise(Model& model);
   // Called once per step with the largest vertex displacement of that step.
   void update(Model& model, double largestStepDisplacement);
+  // Blocks to rescan at the next update whatever their motion.
+  void requestRescan(const std::vector<int>& blocks) { requested_.insert(requested_.end(), blocks.begin(), blocks.end()); }
   int scans() const { return scans_; }
 
  private:
-  void scan(Model& model);
+  // All blocks (moved == nullptr), or those flagged in moved and the contacts they take part in.
+  void scan(Model& model, const std::vector<char>* moved = nullptr);
   std::vector<std::pair<int, int>> candidatePairs(const Model& model);
-  double largestDisplacementSinceScan(const Model& model) const;
+  void measureDisplacements(const Model& model);
 
-  double motionSinceScan_ = 0.0;  // path length of the fastest vertex, a cheap upper bound
-  std::vector<Vec2> scanCentroid_;  // block and gridpoint positions at the last scan
+  double motionSinceScan_ = 0.0;  // path of the fastest vertex since the last measure
+  double margin_ = 0.0;           // how far it may go before a block could need a rescan
+  std::vector<double> displacement_;  // per block, from its last scan
+  std::vector<char> moved_;
+  std::vector<int> requested_;
+  std::vector<Vec2> scanCentroid_;  // block and gridpoint positions at each block's last scan
   std::vector<double> scanRotation_;
   std::vector<Vec2> scanGridpoint_;
   int scans_ = 0;
@@ -40,6 +47,8 @@ class ContactDetection {
   std::vector<Candidate> found_;        // buffers reused from scan to scan
   std::vector<Contact> spareContacts_;
   std::vector<YieldingState> spareStates_;
+  std::vector<Contact> mergedContacts_;
+  std::vector<YieldingState> mergedStates_;
   std::vector<double> minX_, maxX_, minY_, maxY_;
 };
 

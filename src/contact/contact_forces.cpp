@@ -61,7 +61,16 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
   for (std::size_t i = 0; i < m.contacts.size(); ++i) {
     Contact& c = m.contacts[i];
     if (c.open && motionClock < c.closableAt) continue;
+    const int cornerBefore = c.corner, featureBefore = c.feature;
+    const bool cornerToCorner = c.featureKind == FeatureKind::Corner;
     const FeatureHit hit = trackFeature(m, c);
+    // Two corners that have slid a rounding length past each other (not two corners of a grid
+    // point, where vibration alone moves the contact between corner and edge).
+    if (cornerToCorner && hit.kind == FeatureKind::Edge &&
+        norm(m.vertices.position[cornerBefore] - m.vertices.position[featureBefore]) > m.roundingLength) {
+      totals.passedCorners.push_back(c.blockA);
+      totals.passedCorners.push_back(c.blockB);
+    }
     const double dun = hit.overlap - c.overlap;  // closing positive
     c.feature = hit.feature;
     c.featureKind = hit.kind;

@@ -2,6 +2,8 @@
 // The contact-force stage: per contact, update the geometry from the blocks' new positions,
 // form the relative displacement increments of the step, apply the joint law and add the
 // force and moment to both blocks.
+#include <vector>
+
 #include "core/model.hpp"
 
 namespace vdec {
@@ -18,6 +20,9 @@ struct ContactStepTotals {
   // on a block that moves freely, and that contact's index (-1 when there is none).
   double largestGrownStiffness = 0.0;
   int stiffestContact = -1;
+  // Blocks of corner-corner contacts whose corners passed each other in the step: each corner
+  // may now rest on the other block's face, but the contact followed only one of them.
+  std::vector<int> passedCorners;
 };
 
 // Throws OverlapError naming the contact when an overlap exceeds half the rounding length.

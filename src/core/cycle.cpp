@@ -135,6 +135,7 @@ void Cycle::buildStages() {
                          const ContactStepTotals t =
                              computeContactForces(model_, model_.cycle == 0 ? 0.0 : dt_, motionClock_);
                          checkStiffnessGrowth(t);
+                         detection_.requestRescan(t.passedCorners);
                          step_.strainEnergy += t.strainEnergy;
                          energy_.jointRelease += t.jointRelease;
                          energy_.slipDissipation += t.slipDissipation;

@@ -128,3 +128,53 @@ TEST(ContactLifecycle, AnOpenContactIsEvaluatedAgainBeforeItCanClose) {
   EXPECT_GT(closedSeen, 1000);
   EXPECT_EQ(failures, 0);
 }
+
+TEST(ContactLifecycle, PartialRescansKeepAContactAtEveryTouchingCorner) {
+  VDEC_REQUIREMENTS("REQ-CONTACT-004");
+  // A block driven across a row of fixed blocks, riding their faces and corners: only it moves,
+  // so only it (and the pairs it takes part in) is rescanned. Every corner that touches another
+  // block must have its own contact, except for the step or two after two corners pass each
+  // other: the corner-corner contact between them follows one corner onto the other's face, and
+  // the other corner's own contact on the face it now rests on comes from the scan that the
+  // passing asks for at the next step (without it, not until the motion calls for a scan).
+  std::string text = "[model]\nrounding = 0.01\ngravity = [0.0, -10.0]\n[solver]\nmass_damping = 200.0\n[stop]\ncycles = 1\n" +
+                     materials(30.0);
+  text += "[[block]]\nname = \"base\"\nmaterial = \"rock\"\nvertices = [[-1.0, -1.0], [7.0, -1.0], [7.0, 0.0], "
+          "[-1.0, 0.0]]\nfix = [\"x\", \"y\", \"rotation\"]\n";
+  for (int i = 0; i < 6; ++i)
+    text += square("r" + std::to_string(i), i, 0, "fix = [\"x\", \"y\", \"rotation\"]\n");
+  text += "[[block]]\nname = \"rider\"\nmaterial = \"rock\"\nvertices = [[0.25, 1.0], [0.75, 1.0], [0.75, 1.5], "
+          "[0.25, 1.5]]\nfix = [\"x\", \"rotation\"]\nvelocity = [2.0, 0.0]\n";
+  Scene s = sceneFromText(text, "rider");
+  s.settings.stop.cycles = 10000;
+  s.settings.snapshotEvery = 1;
+  int touching = 0, longestWithout = 0;
+  std::map<std::pair<int, int>, int> without;  // (corner, block) -> steps touching with no contact of its own
+  s.settings.snapshot = [&](const Model& m) {
+    for (int a = 0; a < m.blocks.size(); ++a)
+      for (int b = 0; b < m.blocks.size(); ++b) {
+        if (a == b || (m.blocks.driven[a] == DriveAll && m.blocks.driven[b] == DriveAll)) continue;
+        const int first = m.blocks.firstVertex[a];
+        for (int v = first; v < first + m.blocks.vertexCount[a]; ++v) {
+          int& steps = without[{v, b}];
+          const FeatureHit hit = nearestFeature(m, v, b);
+          bool own = false;
+          for (const Contact& c : m.contacts) own = own || (c.corner == v && c.blockB == b);
+          // Two touching corners have one contact between them: either corner's will do.
+          if (hit.kind == FeatureKind::Corner)
+            for (const Contact& c : m.contacts) own = own || (c.corner == hit.feature && c.blockB == a);
+          if (hit.overlap <= 0.0 || own) {
+            steps = 0;
+            continue;
+          }
+          ++touching;
+          longestWithout = std::max(longestWithout, ++steps);
+        }
+      }
+  };
+  Cycle cycle(s.model, s.settings, s.histories);
+  const RunReport report = cycle.run();
+  EXPECT_GT(report.detectionScans, 100);  // the rider crosses 4 m: many rescans of its own
+  EXPECT_LE(longestWithout, 2);
+  EXPECT_GT(s.model.blocks.centroid[7].x, 4.5);
+}
