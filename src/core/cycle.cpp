@@ -70,7 +70,7 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
         model_.gridpoints.mass[i] = 0.25 * model_.gridpoints.stiffness[i] * step * step;
     }
   }
-  dt_ = std::min(dtBlocks, hasZones_ ? zoneTimeStep(model_) : INFINITY);
+  dt_ = std::min(dtBlocks, hasZones_ ? settings_.zoneFraction * zoneTimeStep(model_) : INFINITY);
   // The step as a fraction of the critical step of the stiffest joint spring on the lightest
   // free block (kinematic tests, with every block driven, have no such mode).
   contactStepFraction_ = anyFreeRigid ? settings_.frac * dt_ / dtBlocks : 0.0;
@@ -229,9 +229,13 @@ void Cycle::checkEnergy() {
                                           " J/m) by more than " + std::to_string(kEnergyExcessLimit) +
                                           " times the largest energy supplied so far"
                                     : "is not a number")
-      << ". The time step " << dt_ << " s is above the stability limit of the stiffest contact: lower "
-      << "solver.frac (now " << settings_.frac << "; 0.1 is the usual value), or check for a joint stiffness "
-      << "far above the others.";
+      << ". The time step " << dt_ << " s is above the stability limit of the stiffest ";
+    if (hasZones_)
+      s << "zone or contact: lower solver.zone_fraction (now " << settings_.zoneFraction << "; 1, the estimate of "
+        << "1.3-25, is the usual value) or solver.frac (now " << settings_.frac << ")";
+    else
+      s << "contact: lower solver.frac (now " << settings_.frac << "; 0.1 is the usual value)";
+    s << ", or check for a joint stiffness far above the others.";
     throw InstabilityError(s.str());
   }
 }

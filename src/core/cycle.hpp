@@ -21,6 +21,9 @@ struct StopCriteria {
 
 struct RunSettings {
   double frac = 0.1;          // FRAC of 1.3-28
+  // The zone step as a fraction of 1.3-25's estimate of the critical one (the estimate already
+  // has a margin); for stability studies.
+  double zoneFraction = 1.0;
   double massDamping = 0.0;   // alpha of 1.3-21, 1/s
   bool adaptiveDamping = false;  // alpha by the servo of 1.3-23 instead
   bool densityScaling = false;   // gridpoint inertial masses scaled to one step (1.3-32 to 1.3-34)

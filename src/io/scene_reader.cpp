@@ -251,6 +251,9 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     scene.settings.frac = t->number("frac", 0.1);
     if (!(scene.settings.frac > 0 && scene.settings.frac <= 10))
       t->fail("frac", "must be in (0, 10], got " + shown(scene.settings.frac));
+    scene.settings.zoneFraction = t->number("zone_fraction", 1.0);
+    if (!(scene.settings.zoneFraction > 0 && scene.settings.zoneFraction <= 10))
+      t->fail("zone_fraction", "must be in (0, 10], got " + shown(scene.settings.zoneFraction));
     scene.settings.massDamping = t->nonNegative("mass_damping", 0.0);
     scene.settings.adaptiveDamping = t->boolean("adaptive_damping", false);
     if (scene.settings.adaptiveDamping && t->has("mass_damping"))

@@ -227,3 +227,12 @@ TEST(SceneReader, VelocityHistoryNeedsADrivenDegreeOfFreedom) {
   EXPECT_TRUE(std::regex_search(e, std::regex(R"(history-free\.toml:\d+: key 'block\[1\]\.velocity_history': scales the velocity of fixed)")))
       << e;
 }
+
+TEST(SceneReader, ZoneFractionIsReadAndChecked) {
+  VDEC_REQUIREMENTS("REQ-MC-003, REQ-IO-002");
+  EXPECT_DOUBLE_EQ(sceneFromText(blockOnBase("[solver]\nzone_fraction = 0.5\n"), "zone-fraction").settings.zoneFraction, 0.5);
+  EXPECT_DOUBLE_EQ(sceneFromText(blockOnBase(), "zone-fraction-default").settings.zoneFraction, 1.0);
+  const std::string e = sceneError(blockOnBase("[solver]\nzone_fraction = 0.0\n"), "zone-fraction-zero");
+  EXPECT_TRUE(std::regex_search(e, std::regex(R"(zone-fraction-zero\.toml:\d+: key 'solver\.zone_fraction': must be in \(0, 10\])")))
+      << e;
+}
