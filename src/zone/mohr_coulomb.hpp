@@ -19,6 +19,48 @@ struct MohrCoulombProperties {
 // Plastic state of a zone this step.
 enum PlasticState : std::uint8_t { Elastic = 0, ShearNow = 1, TensionNow = 2, PlasticInPast = 4 };
 
+// The corrections d to the ordered principal stresses s1 <= s2 <= s3 that return them onto the
+// shear yield surface, f = s1 - s3 N_phi + 2 c sqrt(N_phi) < 0 at the trial (fs), with the
+// flow g = s1 - s3 N_psi: d = -lambda D n, n = (1, 0, -N_psi), D the elastic matrix (a1 on
+// the diagonal, a2 off it). Where that return would cross the order of the principal stresses,
+// the stress belongs on an edge of the yield surface, where a second face is active too: the
+// face of (s2, s3) when s1 would pass s2, of (s1, s2) when s2 would pass s3. Both faces'
+// consistency conditions then give the two multipliers (de Souza Neto, Peric and Owen,
+// Computational Methods for Plasticity, 2008, section 8.2.2), and the edge's two stresses come
+// out equal.
+inline void shearReturn(const MohrCoulombProperties& mc, double a1, double a2, double s1, double s2, double s3,
+                        double fs, double d[3]) {
+  const double nPhi = mc.nPhi, nPsi = mc.nPsi, k = 2.0 * mc.cohesion * std::sqrt(nPhi);
+  const double dnMain[3] = {a1 - a2 * nPsi, a2 * (1.0 - nPsi), a2 - a1 * nPsi};  // face (1, 3)
+  const double onMain = dnMain[0] - nPhi * dnMain[2];                            // its m . D n
+  const double lambda = fs / onMain;
+  for (int i = 0; i < 3; ++i) d[i] = -lambda * dnMain[i];
+  const bool pastS2 = s1 + d[0] > s2 + d[1], pastS3 = s2 + d[1] > s3 + d[2];
+  if (!pastS2 && !pastS3) return;
+  // The second face, its D n, the cross terms m_main . D n_second (= m_second . D n_main) and
+  // its trial value.
+  double dnSecond[3], cross, fSecond;
+  if (pastS2) {  // face (2, 3): n = (0, 1, -N_psi), f = s2 - s3 N_phi + k
+    dnSecond[0] = a2 * (1.0 - nPsi);
+    dnSecond[1] = a1 - a2 * nPsi;
+    dnSecond[2] = a2 - a1 * nPsi;
+    cross = dnSecond[0] - nPhi * dnSecond[2];
+    fSecond = s2 - s3 * nPhi + k;
+  } else {  // face (1, 2): n = (1, -N_psi, 0), f = s1 - s2 N_phi + k
+    dnSecond[0] = a1 - a2 * nPsi;
+    dnSecond[1] = a2 - a1 * nPsi;
+    dnSecond[2] = a2 * (1.0 - nPsi);
+    cross = dnSecond[0] - nPhi * dnSecond[2];
+    fSecond = s1 - s2 * nPhi + k;
+  }
+  // [onMain cross; cross onMain] (lambda_main, lambda_second) = (fs, fSecond): the two faces are
+  // alike, so the system is symmetric with equal diagonal.
+  const double det = onMain * onMain - cross * cross;
+  const double lambdaMain = (onMain * fs - cross * fSecond) / det;
+  const double lambdaSecond = (onMain * fSecond - cross * fs) / det;
+  for (int i = 0; i < 3; ++i) d[i] = -lambdaMain * dnMain[i] - lambdaSecond * dnSecond[i];
+}
+
 // Corrects the trial stress (sxx, syy, sxy, szz) onto the yield surface; a1 = K + 4G/3,
 // a2 = K - 2G/3. Returns ShearNow, TensionNow or Elastic.
 inline std::uint8_t mohrCoulombReturn(const MohrCoulombProperties& mc, double a1, double a2, double& sxx, double& syy,
@@ -49,11 +91,7 @@ inline std::uint8_t mohrCoulombReturn(const MohrCoulombProperties& mc, double a1
     d[2] = lambda * a1;
     state = TensionNow;
   } else {
-    // Shear: flow g = s1 - s3 N_psi.
-    const double lambda = fs / ((a1 - a2 * mc.nPsi) - (a2 - a1 * mc.nPsi) * mc.nPhi);
-    d[0] = -lambda * (a1 - a2 * mc.nPsi);
-    d[1] = -lambda * a2 * (1.0 - mc.nPsi);
-    d[2] = -lambda * (a2 - a1 * mc.nPsi);
+    shearReturn(mc, a1, a2, p[order[0]], p[order[1]], s3, fs, d);
     state = ShearNow;
   }
   for (int k = 0; k < 3; ++k) p[order[k]] += d[k];

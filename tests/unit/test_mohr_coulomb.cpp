@@ -133,3 +133,57 @@ zoning = { nx = 1, ny = 1 }
   ASSERT_EQ(warned.warnings.size(), 1u);
   EXPECT_NE(warned.warnings[0].find("generates energy"), std::string::npos);
 }
+
+TEST(MohrCoulomb, ReturnsOntoAnEdgeWhereTheFaceReturnWouldReorderThePrincipalStresses) {
+  VDEC_REQUIREMENTS("REQ-MC-004");
+  // c = 1 MPa, phi = 30 deg (N_phi = 3, 2 c sqrt(N_phi) = 3.46 MPa), psi = 0. A trial with the
+  // two most compressive stresses nearly equal (szz just above sxx): the face return, which
+  // moves s1 by a1 lambda and s2 by a2 lambda, would carry s1 past s2. The edge return must
+  // land with both faces (1, 3) and (2, 3) on the surface, hence s1 = s2, by a correction in
+  // the span of the two faces' D n, each with a multiplier of the yielding sign.
+  const MohrCoulombProperties mc = material(30, 1e6, 0, 1e9);
+  const double k = 2e6 * std::sqrt(3.0);
+  double sxx = -20e6, syy = -1e6, sxy = 0.0, szz = -19.9e6;
+  EXPECT_EQ(mohrCoulombReturn(mc, a1, a2, sxx, syy, sxy, szz), ShearNow);
+  const auto p = principal(sxx, syy, sxy, szz);
+  EXPECT_NEAR(p[0] - 3.0 * p[2] + k, 0.0, 1e-6);  // face (1, 3)
+  EXPECT_NEAR(p[1] - 3.0 * p[2] + k, 0.0, 1e-6);  // face (2, 3)
+  EXPECT_NEAR(p[0], p[1], 1e-6);
+  // The correction (trial - returned) = l1 D (1, 0, -1) + l2 D (0, 1, -1) (psi = 0), with both
+  // multipliers of the sign of a yielding face's, f / (m . D n) < 0: solve for l1, l2 from the
+  // first two components and check the third.
+  const double d1 = -20e6 - sxx, d2 = -19.9e6 - szz, d3 = -1e6 - syy;  // sxx -> s1, szz -> s2, syy -> s3
+  // D (1, 0, -1) = (a1 - a2, 0, a2 - a1); D (0, 1, -1) = (0, a1 - a2, a2 - a1).
+  const double l1 = d1 / (a1 - a2), l2 = d2 / (a1 - a2);
+  EXPECT_LT(l1, 0.0);
+  EXPECT_LT(l2, 0.0);
+  EXPECT_NEAR(d3, (l1 + l2) * (a2 - a1), 1e-6 * std::abs(d3));
+}
+
+TEST(MohrCoulomb, ReturnsOntoTheOtherEdgeWhenTheTwoLeastCompressiveMeet) {
+  VDEC_REQUIREMENTS("REQ-MC-004");
+  // The two least compressive stresses nearly equal and a dilation angle: the face return moves
+  // s2 by a2 (1 - N_psi) lambda and s3 by (a2 - a1 N_psi) lambda, which carries s2 past s3;
+  // the edge return lands on faces (1, 3) and (1, 2) with s2 = s3.
+  const MohrCoulombProperties mc = material(30, 1e6, 20, 1e9);
+  const double k = 2e6 * std::sqrt(3.0);
+  double sxx = -30e6, syy = -2.0e6, sxy = 0.0, szz = -2.05e6;
+  EXPECT_EQ(mohrCoulombReturn(mc, a1, a2, sxx, syy, sxy, szz), ShearNow);
+  const auto p = principal(sxx, syy, sxy, szz);
+  EXPECT_NEAR(p[0] - 3.0 * p[2] + k, 0.0, 1e-6);  // face (1, 3)
+  EXPECT_NEAR(p[0] - 3.0 * p[1] + k, 0.0, 1e-6);  // face (1, 2)
+  EXPECT_NEAR(p[1], p[2], 1e-6);
+}
+
+TEST(MohrCoulomb, AFaceReturnThatKeepsTheOrderIsUnchangedByTheEdgeLogic) {
+  VDEC_REQUIREMENTS("REQ-MC-004");
+  // Well inside the face region: one face active, s2 moved only by a2 (1 - N_psi) lambda.
+  const MohrCoulombProperties mc = material(30, 1e6, 10, 1e9);
+  double sxx = -30e6, syy = -2e6, sxy = 0.0, szz = -10e6;
+  const double nPsi = material(30, 0, 10, 0).nPsi;
+  EXPECT_EQ(mohrCoulombReturn(mc, a1, a2, sxx, syy, sxy, szz), ShearNow);
+  const auto p = principal(sxx, syy, sxy, szz);
+  EXPECT_NEAR(p[0] - 3.0 * p[2] + 2e6 * std::sqrt(3.0), 0.0, 1e-6);
+  const double lambda = (-30e6 - sxx) / (a1 - a2 * nPsi);
+  EXPECT_NEAR(szz, -10e6 - lambda * a2 * (1.0 - nPsi), 1e-6);
+}
