@@ -13,8 +13,10 @@ inline constexpr int kReduceChunk = 1024;
 // Calls f(i, acc) for i in [0, n), each chunk with its own accumulator starting from T{}, and
 // combines the chunk accumulators in order with combine(total, chunk). f must write only to
 // data owned by element i (and to acc).
+// The same, with f called once per chunk as f(begin, end, acc), for loops that work on several
+// elements at a time.
 template <class T, class F, class Combine>
-T deterministicReduce(int n, F&& f, Combine&& combine) {
+T deterministicReduceChunks(int n, F&& f, Combine&& combine) {
   const int chunks = (n + kReduceChunk - 1) / kReduceChunk;
   // Kept from call to call (per calling thread and type): no allocation once the model is running.
   // The worker threads reach it through this reference: their own thread_local copies are empty.
@@ -26,12 +28,21 @@ T deterministicReduce(int n, F&& f, Combine&& combine) {
   for (int c = 0; c < chunks; ++c) {
     const int end = (c + 1) * kReduceChunk < n ? (c + 1) * kReduceChunk : n;
     T acc{};
-    for (int i = c * kReduceChunk; i < end; ++i) f(i, acc);
+    f(c * kReduceChunk, end, acc);
     partial[static_cast<std::size_t>(c)] = acc;
   }
   T total{};
   for (const T& p : partial) combine(total, p);
   return total;
+}
+
+template <class T, class F, class Combine>
+T deterministicReduce(int n, F&& f, Combine&& combine) {
+  return deterministicReduceChunks<T>(
+      n, [&](int begin, int end, T& acc) {
+        for (int i = begin; i < end; ++i) f(i, acc);
+      },
+      combine);
 }
 
 // The sum of f(i) over [0, n), bitwise the same at any thread count.

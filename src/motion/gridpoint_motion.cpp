@@ -70,17 +70,22 @@ MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha) {
     };
     v1.x = advance(g.driven[i] & DriveX, v0.x, load.x, body.x, zoneForce.x);
     v1.y = advance(g.driven[i] & DriveY, v0.y, load.y, body.y, zoneForce.y);
+    // The largest unbalanced force and speed are kept squared and rooted once at the end:
+    // the square root is monotonic, so the largest root is the root of the largest square.
     if (free) {
-      t.largestUnbalancedForce = std::max(t.largestUnbalancedForce, std::sqrt(unbalanced));
+      t.largestUnbalancedForce = std::max(t.largestUnbalancedForce, unbalanced);
       t.forceScaleSum += zoneMagnitude;
       ++t.forceCount;
     }
     g.velocity[i] = v1;
     g.position[i] += dt * v1;
-    t.largestDisplacement = std::max(t.largestDisplacement, norm(v1) * dt);
+    t.largestDisplacement = std::max(t.largestDisplacement, v1.x * v1.x + v1.y * v1.y);
   };
-  return deterministicReduce<MotionStepTotals>(g.size(), step,
-                                               [](MotionStepTotals& a, const MotionStepTotals& b) { a.merge(b); });
+  MotionStepTotals totals = deterministicReduce<MotionStepTotals>(
+      g.size(), step, [](MotionStepTotals& a, const MotionStepTotals& b) { a.merge(b); });
+  totals.largestUnbalancedForce = std::sqrt(totals.largestUnbalancedForce);
+  totals.largestDisplacement = std::sqrt(totals.largestDisplacement) * dt;
+  return totals;
 }
 
 }  // namespace vdec

@@ -107,80 +107,95 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
     double strain = 0.0, plastic = 0.0;
     int firstInverted = std::numeric_limits<int>::max();  // an inside-out zone, if any
   };
-  const Sums sums = deterministicReduce<Sums>(count, [&](int z, Sums& acc) {
-    const auto& n = zn.gridpoint[z];
-    const Vec2 p0 = g.position[n[0]], p1 = g.position[n[1]], p2 = g.position[n[2]];
-    const double twiceArea = cross(p1 - p0, p2 - p0);
-    if (!(twiceArea > 0.0)) {
-      acc.firstInverted = std::min(acc.firstInverted, z);
-      return;
+  const Sums sums = deterministicReduceChunks<Sums>(count, [&](int begin, int end, Sums& acc) {
+    // Zones go through in tiles: their gridpoints' positions and velocities are gathered into
+    // arrays, the arithmetic, the same for every elastic zone, runs over the tile in one loop
+    // without branches (which the compiler vectorises), and the plastic return, the checks and
+    // the sums follow zone by zone in order, so the results are those of a zone-by-zone loop.
+    constexpr int kTile = 64;
+    for (int tile = begin; tile < end; tile += kTile) {
+      const int size = std::min(kTile, end - tile);
+      double p0x[kTile], p0y[kTile], p1x[kTile], p1y[kTile], p2x[kTile], p2y[kTile];
+      double v0x[kTile], v0y[kTile], v1x[kTile], v1y[kTile], v2x[kTile], v2y[kTile];
+      double sxx[kTile], syy[kTile], sxy[kTile], szz[kTile], a1[kTile], a2[kTile], twoG[kTile];
+      double twiceArea[kTile], halfStepArea[kTile];
+      for (int k = 0; k < size; ++k) {
+        const int z = tile + k;
+        const auto& n = zn.gridpoint[z];
+        const Vec2 q0 = g.position[n[0]], q1 = g.position[n[1]], q2 = g.position[n[2]];
+        const Vec2 w0 = g.velocity[n[0]], w1 = g.velocity[n[1]], w2 = g.velocity[n[2]];
+        p0x[k] = q0.x, p0y[k] = q0.y, p1x[k] = q1.x, p1y[k] = q1.y, p2x[k] = q2.x, p2y[k] = q2.y;
+        v0x[k] = w0.x, v0y[k] = w0.y, v1x[k] = w1.x, v1y[k] = w1.y, v2x[k] = w2.x, v2y[k] = w2.y;
+        sxx[k] = zn.sxx[z], syy[k] = zn.syy[z], sxy[k] = zn.sxy[z], szz[k] = zn.szz[z];
+        const ZoneLaw& law = laws[zn.material[z]];
+        a1[k] = law.a1, a2[k] = law.a2, twoG[k] = law.twoG;
+      }
+      for (int k = 0; k < size; ++k) {
+        twiceArea[k] = (p1x[k] - p0x[k]) * (p2y[k] - p0y[k]) - (p1y[k] - p0y[k]) * (p2x[k] - p0x[k]);
+        // The increment v dt took the zone from x - v dt to x; its gradient is formed on the
+        // configuration halfway (Hughes and Winget 1980), on which a rigid rotation has an
+        // exactly skew gradient: no strain, and a spin whose rotation below is the rotation itself.
+        const double m0x = p0x[k] - 0.5 * dt * v0x[k], m0y = p0y[k] - 0.5 * dt * v0y[k];
+        const double m1x = p1x[k] - 0.5 * dt * v1x[k], m1y = p1y[k] - 0.5 * dt * v1y[k];
+        const double m2x = p2x[k] - 0.5 * dt * v2x[k], m2y = p2y[k] - 0.5 * dt * v2y[k];
+        halfStepArea[k] = (m1x - m0x) * (m2y - m0y) - (m1y - m0y) * (m2x - m0x);
+        const double inv = 1.0 / halfStepArea[k];
+        // Gradients of the linear shape functions; Wilkins' contour integral gives the same.
+        const double bx0 = (m1y - m2y) * inv, bx1 = (m2y - m0y) * inv, bx2 = (m0y - m1y) * inv;
+        const double by0 = (m2x - m1x) * inv, by1 = (m0x - m2x) * inv, by2 = (m1x - m0x) * inv;
+        const double dvxdx = v0x[k] * bx0 + v1x[k] * bx1 + v2x[k] * bx2;
+        const double dvxdy = v0x[k] * by0 + v1x[k] * by1 + v2x[k] * by2;
+        const double dvydx = v0y[k] * bx0 + v1y[k] * bx1 + v2y[k] * bx2;
+        const double dvydy = v0y[k] * by0 + v1y[k] * by1 + v2y[k] * by2;
+        // Rotation of the stress with the zone (1.4-114): by the spin increment phi as the
+        // exactly orthogonal rotation (I - W/2)^-1 (I + W/2), angle 2 atan(phi/2)
+        // (Hughes-Winget); with the gradient on the half-step configuration this is the zone's
+        // rotation itself. At phi = 0 it is exactly the identity.
+        const double phi = 0.5 * (dvydx - dvxdy) * dt;
+        const double q = 1.0 / (1.0 + 0.25 * phi * phi);
+        const double c = (1.0 - 0.25 * phi * phi) * q, s = phi * q;
+        const double rxx = c * c * sxx[k] - 2.0 * c * s * sxy[k] + s * s * syy[k];
+        const double ryy = s * s * sxx[k] + 2.0 * c * s * sxy[k] + c * c * syy[k];
+        const double rxy = c * s * (sxx[k] - syy[k]) + (c * c - s * s) * sxy[k];
+        // Plane-strain elasticity (Hooke, 1.4-105, as the law M of 1.4-115): a1 = K + 4G/3,
+        // a2 = K - 2G/3.
+        const double exx = dvxdx * dt, eyy = dvydy * dt, exy = 0.5 * (dvxdy + dvydx) * dt;
+        sxx[k] = rxx + (a1[k] * exx + a2[k] * eyy);
+        syy[k] = ryy + (a2[k] * exx + a1[k] * eyy);
+        sxy[k] = rxy + twoG[k] * exy;
+        szz[k] = szz[k] + a2[k] * (exx + eyy);
+      }
+      for (int k = 0; k < size; ++k) {
+        const int z = tile + k;
+        if (!(twiceArea[k] > 0.0) || !(halfStepArea[k] > 0.0)) {
+          acc.firstInverted = std::min(acc.firstInverted, z);
+          continue;
+        }
+        const ZoneLaw& law = laws[zn.material[z]];
+        const BlockMaterial& mat = *law.material;
+        const double area = 0.5 * twiceArea[k];
+        if (mat.plastic) {
+          // The plastic strain of the return is C^-1 (trial - returned) and the stress over it
+          // is on average (trial + returned) / 2, so the work it absorbs is W(trial) -
+          // W(returned) for the quadratic elastic energy W: exact, and no further state is needed.
+          const double trialEnergy = energyDensity(law, sxx[k], syy[k], sxy[k], szz[k]);
+          const std::uint8_t now = mohrCoulombReturn(mat.mohrCoulomb, law.a1, law.a2, sxx[k], syy[k], sxy[k], szz[k]);
+          if (now != Elastic) acc.plastic += area * (trialEnergy - energyDensity(law, sxx[k], syy[k], sxy[k], szz[k]));
+          zn.plasticState[z] = static_cast<std::uint8_t>(now | ((zn.plasticState[z] & (ShearNow | TensionNow | PlasticInPast)) ? PlasticInPast : 0));
+        }
+        zn.sxx[z] = sxx[k];
+        zn.syy[z] = syy[k];
+        zn.sxy[z] = sxy[k];
+        zn.szz[z] = szz[k];
+        // Nodal forces (1.4-116) on the configuration reached: F_i = -A sigma grad N_i, which is
+        // -(1/2) sigma (n1 S1 + n2 S2) over the two sides at node i; tension positive.
+        const double cx[3] = {0.5 * (p1y[k] - p2y[k]), 0.5 * (p2y[k] - p0y[k]), 0.5 * (p0y[k] - p1y[k])};
+        const double cy[3] = {0.5 * (p2x[k] - p1x[k]), 0.5 * (p0x[k] - p2x[k]), 0.5 * (p1x[k] - p0x[k])};
+        for (int corner = 0; corner < 3; ++corner)
+          zn.nodalForce[z][corner] = {-(sxx[k] * cx[corner] + sxy[k] * cy[corner]), -(sxy[k] * cx[corner] + syy[k] * cy[corner])};
+        acc.strain += area * energyDensity(law, sxx[k], syy[k], sxy[k], szz[k]);
+      }
     }
-    const Vec2 v[3] = {g.velocity[n[0]], g.velocity[n[1]], g.velocity[n[2]]};
-    // The increment v dt took the zone from x - v dt to x; its gradient is formed on the
-    // configuration halfway (Hughes and Winget 1980), on which a rigid rotation has an exactly
-    // skew gradient: no strain, and a spin whose rotation below is the rotation itself.
-    const Vec2 m0 = p0 - 0.5 * dt * v[0], m1 = p1 - 0.5 * dt * v[1], m2 = p2 - 0.5 * dt * v[2];
-    const double halfStepArea = cross(m1 - m0, m2 - m0);
-    if (!(halfStepArea > 0.0)) {
-      acc.firstInverted = std::min(acc.firstInverted, z);
-      return;
-    }
-    const double inv = 1.0 / halfStepArea;
-    // Gradients of the linear shape functions; Wilkins' contour integral gives the same.
-    const double bx[3] = {(m1.y - m2.y) * inv, (m2.y - m0.y) * inv, (m0.y - m1.y) * inv};
-    const double by[3] = {(m2.x - m1.x) * inv, (m0.x - m2.x) * inv, (m1.x - m0.x) * inv};
-    double dvxdx = 0.0, dvxdy = 0.0, dvydx = 0.0, dvydy = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      dvxdx += v[c].x * bx[c];
-      dvxdy += v[c].x * by[c];
-      dvydx += v[c].y * bx[c];
-      dvydy += v[c].y * by[c];
-    }
-    const ZoneLaw& law = laws[zn.material[z]];
-    const BlockMaterial& mat = *law.material;
-    double sxx = zn.sxx[z], syy = zn.syy[z], sxy = zn.sxy[z];
-    // Rotation of the stress with the zone (1.4-114): by the spin increment phi as the exactly
-    // orthogonal rotation (I - W/2)^-1 (I + W/2), angle 2 atan(phi/2) (Hughes-Winget); with the
-    // gradient on the half-step configuration this is the zone's rotation itself.
-    const double phi = 0.5 * (dvydx - dvxdy) * dt;
-    if (phi != 0.0) {
-      const double q = 1.0 / (1.0 + 0.25 * phi * phi);
-      const double c = (1.0 - 0.25 * phi * phi) * q, s = phi * q;
-      const double rxx = c * c * sxx - 2.0 * c * s * sxy + s * s * syy;
-      const double ryy = s * s * sxx + 2.0 * c * s * sxy + c * c * syy;
-      const double rxy = c * s * (sxx - syy) + (c * c - s * s) * sxy;
-      sxx = rxx;
-      syy = ryy;
-      sxy = rxy;
-    }
-    // Plane-strain elasticity (Hooke, 1.4-105, as the law M of 1.4-115): a1 = K + 4G/3, a2 = K - 2G/3.
-    const double exx = dvxdx * dt, eyy = dvydy * dt, exy = 0.5 * (dvxdy + dvydx) * dt;
-    const double a1 = law.a1, a2 = law.a2;
-    sxx += a1 * exx + a2 * eyy;
-    syy += a2 * exx + a1 * eyy;
-    sxy += law.twoG * exy;
-    double szz = zn.szz[z] + a2 * (exx + eyy);
-    const double area = 0.5 * twiceArea;
-    if (mat.plastic) {
-      // The plastic strain of the return is C^-1 (trial - returned) and the stress over it is on
-      // average (trial + returned) / 2, so the work it absorbs is W(trial) - W(returned) for the
-      // quadratic elastic energy W: exact, and no further state is needed.
-      const double trialEnergy = energyDensity(law, sxx, syy, sxy, szz);
-      const std::uint8_t now = mohrCoulombReturn(mat.mohrCoulomb, a1, a2, sxx, syy, sxy, szz);
-      if (now != Elastic) acc.plastic += area * (trialEnergy - energyDensity(law, sxx, syy, sxy, szz));
-      zn.plasticState[z] = static_cast<std::uint8_t>(now | ((zn.plasticState[z] & (ShearNow | TensionNow | PlasticInPast)) ? PlasticInPast : 0));
-    }
-    zn.sxx[z] = sxx;
-    zn.syy[z] = syy;
-    zn.sxy[z] = sxy;
-    zn.szz[z] = szz;
-    // Nodal forces (1.4-116) on the configuration reached: F_i = -A sigma grad N_i, which is
-    // -(1/2) sigma (n1 S1 + n2 S2) over the two sides at node i; tension positive.
-    const double cx[3] = {0.5 * (p1.y - p2.y), 0.5 * (p2.y - p0.y), 0.5 * (p0.y - p1.y)};
-    const double cy[3] = {0.5 * (p2.x - p1.x), 0.5 * (p0.x - p2.x), 0.5 * (p1.x - p0.x)};
-    for (int c = 0; c < 3; ++c)
-      zn.nodalForce[z][c] = {-(sxx * cx[c] + sxy * cy[c]), -(sxy * cx[c] + syy * cy[c])};
-    acc.strain += area * energyDensity(law, sxx, syy, sxy, szz);
   }, [](Sums& total, const Sums& part) {
     total.strain += part.strain;
     total.plastic += part.plastic;
