@@ -195,3 +195,12 @@ def test_salencon_rejects_bad_input():
         _salencon(1.0, pi=60e6)                               # expansion failure, not covered
     with pytest.raises(ValueError):
         _salencon(1.0, nu=0.5)
+
+
+@REQ
+def test_plastic_strain_rate_ratio_known_values():
+    assert pl.plastic_strain_rate_ratio(dilation_deg=0.0) == -1.0
+    assert pl.plastic_strain_rate_ratio(dilation_deg=30.0) == pytest.approx(-3.0, rel=1e-15)
+    assert pl.plastic_strain_rate_ratio(dilation_deg=10.0) == pytest.approx(-(1 + math.sin(math.radians(10))) / (1 - math.sin(math.radians(10))))
+    with pytest.raises(ValueError, match="dilation"):
+        pl.plastic_strain_rate_ratio(dilation_deg=90.0)

@@ -99,6 +99,8 @@ def test_derived_ratio_of_two_runs():
              "inputs": {"numerator": {"kind": "run_meta", "path": "run.cycles"},
                         "denominator": {"kind": "run_meta", "path": "run.cycles", "variant": "slow"}}}
     assert extract(table, this, 0, runs) == pytest.approx(0.25, rel=1e-15)
+    # A scale turns a ratio of displacement rates into one of strain rates (lengths 1 m / 2 m).
+    assert extract({**table, "params": {"scale": 2.0}}, this, 0, runs) == pytest.approx(0.5, rel=1e-15)
     with pytest.raises(ExtractError, match="reads run 'fast', which did not run"):
         extract({**table, "inputs": {**table["inputs"], "denominator": {"kind": "run_meta", "path": "run.cycles",
                                                                         "variant": "fast"}}}, this, 0, runs)

@@ -30,6 +30,18 @@ def biaxial_peak_stress(*, confining_pressure, cohesion, friction_deg):
     return -np.asarray(confining_pressure, dtype=float) * n - 2.0 * np.asarray(cohesion, dtype=float) * np.sqrt(n)
 
 
+def plastic_strain_rate_ratio(*, dilation_deg):
+    """d e3_p / d e1_p = -N_psi for Mohr-Coulomb flow on the face of s1 and s3, with the plastic
+    potential g = s1 - s3 N_psi (non-associated when psi < phi): the minor principal direction
+    extends N_psi times as fast as the major one shortens, and the intermediate one carries no
+    plastic strain. Once a sample under constant confinement flows at constant stress, its
+    elastic strains stop changing and this is the ratio of the total strain rates."""
+    psi = math.radians(float(dilation_deg))
+    if not 0.0 <= psi < math.pi / 2:
+        raise ValueError(f"dilation {dilation_deg} degrees must lie in [0, 90)")
+    return -(1.0 + math.sin(psi)) / (1.0 - math.sin(psi))
+
+
 def _check_young_poisson(E, nu):
     if not E > 0.0:
         raise ValueError(f"E = {E}: Young's modulus must be positive")

@@ -36,9 +36,11 @@ import math
 
 import numpy as np
 
-def ratio(*, numerator, denominator):
-    """numerator / denominator: e.g. the cycles of one run over another's."""
-    return numerator / denominator
+def ratio(*, numerator, denominator, scale=1.0):
+    """scale x numerator / denominator: e.g. the cycles of one run over another's, or a ratio of
+    two displacement rates turned into the ratio of the strain rates (scale = the lengths'
+    ratio)."""
+    return scale * numerator / denominator
 
 
 # Arithmetic a derived extract may use besides the analytic package's inversion formulas.
