@@ -28,11 +28,12 @@ std::vector<std::pair<int, int>> overlappingPairs(const std::vector<double>& min
   double cell = std::max(extent[n / 2], 1e-300);
   // A few huge blocks among tiny ones must not make the grid huge: at most about 4 cells a block.
   const double area = (hiX - loX) * (hiY - loY);
-  cell = std::max(cell, std::sqrt(area / (4.0 * n)));
+  cell = std::max({cell, std::sqrt(area / (4.0 * n)), (hiX - loX) / (4.0 * n), (hiY - loY) / (4.0 * n)});
   const int nx = std::max(1, static_cast<int>((hiX - loX) / cell) + 1);
   const int ny = std::max(1, static_cast<int>((hiY - loY) / cell) + 1);
-  auto column = [&](double x) { return std::clamp(static_cast<int>((x - loX) / cell), 0, nx - 1); };
-  auto row = [&](double y) { return std::clamp(static_cast<int>((y - loY) / cell), 0, ny - 1); };
+  // Clamped before the conversion, so that no coordinate can overflow it.
+  auto column = [&](double x) { return static_cast<int>(std::clamp((x - loX) / cell, 0.0, nx - 1.0)); };
+  auto row = [&](double y) { return static_cast<int>(std::clamp((y - loY) / cell, 0.0, ny - 1.0)); };
   g.cellStart.assign(static_cast<std::size_t>(nx) * ny + 1, 0);
   for (int pass = 0; pass < 2; ++pass) {
     for (int b = 0; b < n; ++b)

@@ -62,10 +62,16 @@ void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
   std::vector<std::pair<Key, int>> previousIndex(previous.size());
   for (std::size_t i = 0; i < previous.size(); ++i)
     previousIndex[i] = {Key{previous[i].corner, previous[i].blockB}, static_cast<int>(i)};
-  auto byKey = [](const auto& a, const auto& b) { return a.first < b.first; };
   // In order already unless a contact was handed over to the other corner since the last scan.
-  if (!std::is_sorted(previousIndex.begin(), previousIndex.end(), byKey))
-    std::sort(previousIndex.begin(), previousIndex.end(), byKey);
+  // A hand-over can also make a contact with the key of one the scan made since; of two such,
+  // the closed one, then the earlier in the list, is the one carried on, the other dropped.
+  auto byKeyThenClosed = [&previous](const auto& a, const auto& b) {
+    if (a.first < b.first || b.first < a.first) return a.first < b.first;
+    if (previous[a.second].open != previous[b.second].open) return !previous[a.second].open;
+    return a.second < b.second;
+  };
+  if (!std::is_sorted(previousIndex.begin(), previousIndex.end(), byKeyThenClosed))
+    std::sort(previousIndex.begin(), previousIndex.end(), byKeyThenClosed);
   // Candidates come in ascending key order, so the previous contact with the same key is found
   // by walking forward through the sorted index.
   std::size_t walk = 0;
@@ -210,9 +216,12 @@ void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
       if (yielding) mergedStates.push_back(keptStates[k]);
       ++k;
     };
+    const Key none{-1, -1};
+    Key last = none;
     for (const auto& [key, index] : previousIndex) {
       const Contact& old = previous[index];
-      if (rescanned(old.blockA) || rescanned(old.blockB)) continue;
+      if (rescanned(old.blockA) || rescanned(old.blockB) || key == last) continue;
+      last = key;
       while (k < kept.size() && Key{kept[k].corner, kept[k].blockB} < key) takeKept();
       merged.push_back(old);
       if (yielding) mergedStates.push_back(m.yieldingStates[index]);
@@ -254,7 +263,7 @@ bool edgesCross(const Model& m, int a, int b, double touching) {
 void ContactDetection::initialise(Model& m) {
   scan(m);
   motionSinceScan_ = 0.0;
-  margin_ = 0.5 * m.contactTolerance;
+  margin_ = 0.45 * m.contactTolerance;
   const double touching = 1e-6 * m.roundingLength;
   for (const auto& [a, b] : candidatePairs(m)) {
     if (!edgesCross(m, a, b, touching)) continue;
@@ -277,24 +286,29 @@ void ContactDetection::measureDisplacements(const Model& m) {
 }
 
 void ContactDetection::update(Model& m, double largestStepDisplacement) {
-  // Each block is rescanned once one of its vertices has moved half the tolerance from where
-  // its last scan saw it: a pair of blocks then cannot have approached by more than the
-  // tolerance since the later of their two scans, which saw them both. The path travelled by
-  // the fastest vertex bounds every block's further motion and costs nothing, so the
+  // A block must be rescanned before one of its vertices has moved T from where its last scan
+  // saw it, and when a scan is due every block past C goes with it. Take a pair whose later scan
+  // rescanned B but not A: A was then at most C from its own reference and may go on to T, so
+  // since that scan A has moved at most C + T and B at most T. With 2 T + C = tol the pair cannot
+  // have closed more than the tolerance the scan looked across. A small C keeps resting blocks
+  // out of the rescans of moving ones; T is then close to half the tolerance. The path travelled
+  // by the fastest vertex bounds every block's further motion and costs nothing, so the
   // displacements are measured only when it has used up the margin left at the last measure.
+  const double reach = 0.45 * m.contactTolerance, companion = 0.1 * m.contactTolerance;
   motionSinceScan_ += largestStepDisplacement;
   if (motionSinceScan_ <= margin_ && requested_.empty()) return;
-  const double limit = 0.5 * m.contactTolerance;
   measureDisplacements(m);
   moved_.assign(m.blocks.size(), 0);
-  const bool due = *std::max_element(displacement_.begin(), displacement_.end()) > limit || !requested_.empty();
+  // Near T already counts: a block resting just short of it would otherwise leave no margin,
+  // and every step would measure without scanning.
+  const bool due = *std::max_element(displacement_.begin(), displacement_.end()) > 0.9 * reach || !requested_.empty();
   for (const int b : requested_) moved_[b] = 1;
   requested_.clear();
-  // Once a scan is due, every block past half the limit goes with it: blocks move at similar
+  // Once a scan is due, every block past C goes with it: blocks in motion move at similar
   // speeds, and rescanning each as it alone crosses the limit would scan at every step.
   int count = 0;
   for (int b = 0; due && b < m.blocks.size(); ++b) {
-    if (displacement_[b] > 0.5 * limit) moved_[b] = 1;
+    if (displacement_[b] > companion) moved_[b] = 1;
     count += moved_[b];
   }
   if (2 * count > m.blocks.size()) {  // most blocks: one full scan costs less bookkeeping
@@ -307,7 +321,7 @@ void ContactDetection::update(Model& m, double largestStepDisplacement) {
   for (int b = 0; b < m.blocks.size(); ++b)
     if (!moved_[b]) largest = std::max(largest, displacement_[b]);
   motionSinceScan_ = 0.0;
-  margin_ = limit - largest;
+  margin_ = reach - largest;
 }
 
 }  // namespace vdec

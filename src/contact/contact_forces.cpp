@@ -60,7 +60,12 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
   const double overlapLimit = 0.5 * m.roundingLength;
   for (std::size_t i = 0; i < m.contacts.size(); ++i) {
     Contact& c = m.contacts[i];
-    if (c.open && motionClock < c.closableAt) continue;
+    if (c.open && motionClock < c.closableAt) {
+      c.skipped = true;
+      continue;
+    }
+    const bool caughtUp = c.skipped;
+    c.skipped = false;
     const int cornerBefore = c.corner, featureBefore = c.feature;
     const bool cornerToCorner = c.featureKind == FeatureKind::Corner;
     const FeatureHit hit = trackFeature(m, c);
@@ -101,7 +106,10 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
     // increments (trapezoidal) is what its springs stored, what slip dissipated, and the rest,
     // which the joint released without work.
     const double energy = c.open ? 0.0 : weight * jointSpringEnergy(j, c);
-    const double work = 0.5 * ((fnBefore + fn) * dun + (fsBefore + fs) * dus);
+    // A contact evaluated again after steps left out spans all of them in dun; the work of this
+    // step is over this step's own approach, taken from the velocities as dus is.
+    const double dunStep = caughtUp ? -dot(va - vb, hit.normal) * dt : dun;
+    const double work = 0.5 * ((fnBefore + fn) * dunStep + (fsBefore + fs) * dus);
     totals.jointRelease += work - (energy - energyBefore) - weightBefore * slip;
     c.normalDisplacement += dun;
     c.shearDisplacement += dus;

@@ -61,7 +61,7 @@ namespace {
 
 double jointMeasure(const Model& m, const HistorySpec& h) {
   double normalForce = 0.0, shearForce = 0.0, length = 0.0, un = 0.0, us = 0.0, friction = 0.0, plastic = 0.0;
-  int count = 0;
+  int count = 0, yielding = 0;
   for (std::size_t i = 0; i < m.contacts.size(); ++i) {
     const Contact& c = m.contacts[i];
     const bool between = (c.blockA == h.block && c.blockB == h.otherBlock) ||
@@ -72,9 +72,10 @@ double jointMeasure(const Model& m, const HistorySpec& h) {
     if (!c.open) length += c.length;
     un += c.normalDisplacement;
     us += c.shearDisplacement;
-    if (!m.yieldingStates.empty()) {
+    if (m.jointMaterials[c.joint].law == JointLaw::ContinuouslyYielding) {
       friction += m.yieldingStates[i].effectiveFriction;
       plastic += m.yieldingStates[i].plasticShear;
+      ++yielding;
     }
     ++count;
   }
@@ -86,8 +87,8 @@ double jointMeasure(const Model& m, const HistorySpec& h) {
     case HistoryQuantity::JointNormalDisplacement: return count ? un / count : 0.0;
     case HistoryQuantity::JointShearDisplacement: return count ? us / count : 0.0;
     case HistoryQuantity::JointLength: return length;
-    case HistoryQuantity::JointEffectiveFriction: return count ? friction / count * 180.0 / std::numbers::pi : 0.0;
-    case HistoryQuantity::JointPlasticShear: return count ? plastic / count : 0.0;
+    case HistoryQuantity::JointEffectiveFriction: return yielding ? friction / yielding * 180.0 / std::numbers::pi : 0.0;
+    case HistoryQuantity::JointPlasticShear: return yielding ? plastic / yielding : 0.0;
     default: return static_cast<double>(count);
   }
 }

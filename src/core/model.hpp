@@ -186,6 +186,7 @@ struct Contact {
   bool open = false;        // separated, or broken in tension and not closed again
   bool intact = true;       // model #5: cohesion and tensile strength not yet destroyed
   bool slipping = false;
+  bool skipped = false;     // open, and left out of the last step's evaluation (see closableAt)
 };
 
 // The state a continuously yielding joint adds to a contact: effective friction phi_eff (rad),

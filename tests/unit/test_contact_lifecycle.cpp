@@ -178,3 +178,45 @@ TEST(ContactLifecycle, PartialRescansKeepAContactAtEveryTouchingCorner) {
   EXPECT_LE(longestWithout, 2);
   EXPECT_GT(s.model.blocks.centroid[7].x, 4.5);
 }
+
+TEST(ContactLifecycle, ABlockLeftOutOfARescanCannotCloseOnItsNeighbourUnseen) {
+  VDEC_REQUIREMENTS("REQ-CONTACT-004");
+  // Tolerance 0.01 m, gap 8 mm. A backs off 2.4 mm; B slides 5.1 mm sideways, which calls a
+  // rescan that, across a gap now wider than the tolerance, drops their contacts. Then A comes
+  // back 7.3 mm (4.9 mm past its first place) and B approaches 4.9 mm: 12.2 mm against a gap
+  // of 10.4. With a rescan due only past half the tolerance and only blocks past a quarter of
+  // it going along, A is left out of B's rescan and neither reaches the limit again: the faces
+  // meet with no contact. The rule 2 T + C <= tol must call a scan first.
+  std::string text = "[model]\nrounding = 0.01\n[stop]\ncycles = 1\n" + materials(30.0);
+  text += "[[block]]\nname = \"A\"\nmaterial = \"rock\"\nvertices = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]\n";
+  text += "[[block]]\nname = \"B\"\nmaterial = \"rock\"\nvertices = [[1.008, 0.0], [2.008, 0.0], [2.008, 1.0], "
+          "[1.008, 1.0]]\n";
+  Scene s = sceneFromText(text, "left-out");
+  Model& m = s.model;
+  ContactDetection detection;
+  detection.initialise(m);
+  ASSERT_EQ(m.contacts.size(), 2u);
+  m.cycle = 1;
+  int touchingWithout = 0, touching = 0;
+  auto move = [&](int b, Vec2 total, int steps) {
+    for (int i = 0; i < steps; ++i) {
+      m.blocks.centroid[b] += (1.0 / steps) * total;
+      placeBlockVertices(m, b);
+      detection.update(m, norm(total) / steps);
+      ++m.cycle;
+      for (int a = 0; a < 2; ++a)
+        for (int v = m.blocks.firstVertex[a]; v < m.blocks.firstVertex[a] + 4; ++v) {
+          if (nearestFeature(m, v, 1 - a).overlap <= 0.0) continue;
+          ++touching;
+          if (m.contacts.empty()) ++touchingWithout;
+        }
+    }
+  };
+  move(0, {-0.0024, 0.0}, 24);
+  move(1, {0.0, 0.0051}, 51);
+  ASSERT_TRUE(m.contacts.empty());  // the rescan dropped them, across 10.4 mm
+  move(0, {0.0073, 0.0}, 73);
+  move(1, {-0.0049, 0.0}, 49);
+  EXPECT_GT(touching, 0);           // the faces do meet
+  EXPECT_EQ(touchingWithout, 0);
+}
