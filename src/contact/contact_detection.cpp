@@ -126,8 +126,12 @@ void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
         const int b = neighbours[k];
         if (p.x < minX_[b] - reach || p.x > maxX_[b] + reach || p.y < minY_[b] - reach || p.y > maxY_[b] + reach)
           continue;
-        const FeatureHit hit = nearestFeature(m, v, b);
-        if (hit.overlap >= -m.contactTolerance) found.push_back({v, a, b, hit, findPrevious(v, b)});
+        // A contact that exists already is followed from its feature, as the contact stage
+        // follows it every step; only a new candidate needs the search over all of B's features.
+        const Contact* existing = findPrevious(v, b);
+        const FeatureHit hit = existing ? followFeature(m, v, b, existing->feature, existing->featureKind)
+                                        : nearestFeature(m, v, b);
+        if (hit.overlap >= -m.contactTolerance) found.push_back({v, a, b, hit, existing});
       }
     }
   }
