@@ -204,6 +204,7 @@ void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
       c.elasticNormalStress = 0.0;  // faces touching at the start: closed and stress-free
       c.open = false;
     }
+    c.springEnergy = c.open ? 0.0 : contactWeight(j, c) * jointSpringEnergy(j, c);
     kept.push_back(c);
     if (yielding) keptStates.push_back({j.initialFriction});
   }

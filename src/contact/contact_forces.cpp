@@ -93,7 +93,7 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
     const JointMaterial& j = m.jointMaterials[c.joint];
     const double weightBefore = contactWeight(j, c);
     const double fnBefore = weightBefore * c.normalStress, fsBefore = weightBefore * c.shearStress;
-    const double energyBefore = c.open ? 0.0 : weightBefore * jointSpringEnergy(j, c);
+    const double energyBefore = c.springEnergy;
     const double slip = j.law == JointLaw::ContinuouslyYielding
                             ? updateContinuouslyYielding(j, c, m.yieldingStates[i], dun, dus)
                             : updateJointStresses(j, c, dun, dus);
@@ -106,6 +106,7 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
     // increments (trapezoidal) is what its springs stored, what slip dissipated, and the rest,
     // which the joint released without work.
     const double energy = c.open ? 0.0 : weight * jointSpringEnergy(j, c);
+    c.springEnergy = energy;
     // A contact evaluated again after steps left out spans all of them in dun; the work of this
     // step is over this step's own approach, taken from the velocities as dus is.
     const double dunStep = caughtUp ? -dot(va - vb, hit.normal) * dt : dun;

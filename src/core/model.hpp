@@ -183,6 +183,7 @@ struct Contact {
   // The reading of the motion clock (the running sum of the largest vertex displacement of each
   // step) below which an open contact cannot have closed: it is not evaluated until then.
   double closableAt = 0.0;
+  double springEnergy = 0.0;  // J/m stored in the springs at the last evaluation (0 while open)
   bool open = false;        // separated, or broken in tension and not closed again
   bool intact = true;       // model #5: cohesion and tensile strength not yet destroyed
   bool slipping = false;
