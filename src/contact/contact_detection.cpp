@@ -34,7 +34,7 @@ std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m
     minY_[b] = std::min(minY_[b], p.y - inflate);
     maxY_[b] = std::max(maxY_[b], p.y + inflate);
   };
-  for (int v = 0; v < m.vertices.size(); ++v) extend(m.vertices.block[v], m.vertices.position[v]);
+  for (int v = 0; v < m.vertices.size(); ++v) extend(m.vertices.block[v], m.vertices.geometry[v].position);
   // Deformable blocks have no contact vertices yet; their gridpoints give their boxes, so that
   // one coming near another block is caught rather than passing through it unseen.
   for (int i = 0; i < m.gridpoints.size(); ++i) extend(m.gridpoints.block[i], m.gridpoints.position[i]);
@@ -121,7 +121,7 @@ void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
   for (int a = 0; a < n; ++a) {
     const int first = m.blocks.firstVertex[a], last = first + m.blocks.vertexCount[a];
     for (int v = first; v < last; ++v) {
-      const Vec2 p = m.vertices.position[v];
+      const Vec2 p = m.vertices.geometry[v].position;
       for (int k = neighbourStart[a]; k < neighbourStart[a + 1]; ++k) {
         const int b = neighbours[k];
         if (p.x < minX_[b] - reach || p.x > maxX_[b] + reach || p.y < minY_[b] - reach || p.y > maxY_[b] + reach)
@@ -249,14 +249,14 @@ namespace {
 // sign overlap without a corner of either inside the other; this is what finds them.
 bool edgesCross(const Model& m, int a, int b, double touching) {
   const Vertices& vx = m.vertices;
-  auto side = [&](int edge, Vec2 p) { return cross(vx.edgeDirection[edge], p - vx.position[edge]); };
+  auto side = [&](int edge, Vec2 p) { return cross(vx.geometry[edge].edgeDirection, p - vx.geometry[edge].position); };
   const int firstA = m.blocks.firstVertex[a], lastA = firstA + m.blocks.vertexCount[a];
   const int firstB = m.blocks.firstVertex[b], lastB = firstB + m.blocks.vertexCount[b];
   for (int i = firstA; i < lastA; ++i) {
     for (int j = firstB; j < lastB; ++j) {
-      const double b0 = side(i, vx.position[j]), b1 = side(i, vx.position[vx.next[j]]);
+      const double b0 = side(i, vx.geometry[j].position), b1 = side(i, vx.geometry[vx.next[j]].position);
       if (!((b0 > touching && b1 < -touching) || (b0 < -touching && b1 > touching))) continue;
-      const double a0 = side(j, vx.position[i]), a1 = side(j, vx.position[vx.next[i]]);
+      const double a0 = side(j, vx.geometry[i].position), a1 = side(j, vx.geometry[vx.next[i]].position);
       if ((a0 > touching && a1 < -touching) || (a0 < -touching && a1 > touching)) return true;
     }
   }

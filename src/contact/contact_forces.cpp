@@ -27,12 +27,12 @@ namespace {
 int adjacentEdgeHolding(const Model& m, int v, int w) {
   const Vertices& vx = m.vertices;
   const double d = m.roundingLength, tie = 1e-9 * d;
-  const Vec2 centre = vx.arcCentre[w];
-  const double sAfter = dot(centre - vx.position[v], vx.edgeDirection[v]);  // on edge v -> next
-  if (sAfter > d + tie && sAfter <= vx.edgeLength[v] - d) return v;
+  const Vec2 centre = vx.geometry[w].arcCentre;
+  const double sAfter = dot(centre - vx.geometry[v].position, vx.geometry[v].edgeDirection);  // on edge v -> next
+  if (sAfter > d + tie && sAfter <= vx.geometry[v].edgeLength - d) return v;
   const int before = vx.prev[v];  // edge prev -> v
-  const double sBefore = dot(centre - vx.position[before], vx.edgeDirection[before]);
-  if (sBefore < vx.edgeLength[before] - d - tie && sBefore >= d) return before;
+  const double sBefore = dot(centre - vx.geometry[before].position, vx.geometry[before].edgeDirection);
+  if (sBefore < vx.geometry[before].edgeLength - d - tie && sBefore >= d) return before;
   return -1;
 }
 
@@ -72,7 +72,7 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
     // Two corners that have slid a rounding length past each other (not two corners of a grid
     // point, where vibration alone moves the contact between corner and edge).
     if (cornerToCorner && hit.kind == FeatureKind::Edge &&
-        norm(m.vertices.position[cornerBefore] - m.vertices.position[featureBefore]) > m.roundingLength) {
+        norm(m.vertices.geometry[cornerBefore].position - m.vertices.geometry[featureBefore].position) > m.roundingLength) {
       totals.passedCorners.push_back(c.blockA);
       totals.passedCorners.push_back(c.blockB);
     }

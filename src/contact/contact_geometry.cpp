@@ -21,7 +21,7 @@ Evaluation evaluate(const Model& m, int blockB, int localFeature, Vec2 centre, d
   const int v = m.blocks.firstVertex[blockB] + localFeature / 2;
   Evaluation out;
   if (localFeature % 2 == 1) {
-    const Vec2 a = vx.position[v], e = vx.edgeDirection[v];
+    const Vec2 a = vx.geometry[v].position, e = vx.geometry[v].edgeDirection;
     const Vec2 nOut = outward(e);
     const double d = m.roundingLength;
     const double s = dot(centre - a, e);
@@ -29,17 +29,17 @@ Evaluation evaluate(const Model& m, int blockB, int localFeature, Vec2 centre, d
     // meeting at a grid point) belongs to both neighbours, never to neither.
     const double slack = 1e-9 * d;
     if (s < d - slack) out.step = -1;
-    else if (s > vx.edgeLength[v] - d + slack) out.step = +1;
+    else if (s > vx.geometry[v].edgeLength - d + slack) out.step = +1;
     const double h = dot(centre - a, nOut);
     out.hit = {v, FeatureKind::Edge, nOut, centre - (0.5 * (radius + h)) * nOut, radius - h};
     return out;
   }
-  const Vec2 o = vx.arcCentre[v];
-  const double rB = vx.arcRadius[v];
+  const Vec2 o = vx.geometry[v].arcCentre;
+  const double rB = vx.geometry[v].arcRadius;
   const Vec2 w = centre - o;
   const double dist = norm(w);
-  const Vec2 nPrev = outward(vx.edgeDirection[vx.prev[v]]);
-  const Vec2 nNext = outward(vx.edgeDirection[v]);
+  const Vec2 nPrev = outward(vx.geometry[vx.prev[v]].edgeDirection);
+  const Vec2 nNext = outward(vx.geometry[v].edgeDirection);
   if (dist <= 0.0) {  // concentric arcs: as deep as two corners can go; any normal will do
     out.hit = {v, FeatureKind::Corner, normalized(nPrev + nNext), o, radius + rB};
     return out;
@@ -66,11 +66,8 @@ void computeBoundaryGeometry(Model& m) {
   vx.next.resize(count);
   vx.prev.resize(count);
   vx.localEdgeDirection.resize(count);
-  vx.edgeDirection.resize(count);
-  vx.edgeLength.resize(count);
   vx.localArcCentre.resize(count);
-  vx.arcCentre.resize(count);
-  vx.arcRadius.resize(count);
+  vx.geometry.resize(count);
   for (int b = 0; b < m.blocks.size(); ++b) {
     const int first = m.blocks.firstVertex[b], n = m.blocks.vertexCount[b];
     for (int k = 0; k < n; ++k) {
@@ -80,14 +77,14 @@ void computeBoundaryGeometry(Model& m) {
   }
   for (int v = 0; v < count; ++v) {
     const Vec2 edge = vx.localPosition[vx.next[v]] - vx.localPosition[v];
-    vx.edgeLength[v] = norm(edge);
-    vx.localEdgeDirection[v] = (1.0 / vx.edgeLength[v]) * edge;
+    vx.geometry[v].edgeLength = norm(edge);
+    vx.localEdgeDirection[v] = (1.0 / vx.geometry[v].edgeLength) * edge;
   }
   for (int v = 0; v < count; ++v) {
     const Vec2 toPrev = -vx.localEdgeDirection[vx.prev[v]];
     const Vec2 toNext = vx.localEdgeDirection[v];
     const double halfAlpha = 0.5 * std::acos(std::clamp(dot(toPrev, toNext), -1.0, 1.0));  // alpha: interior angle
-    vx.arcRadius[v] = d * std::tan(halfAlpha);
+    vx.geometry[v].arcRadius = d * std::tan(halfAlpha);
     vx.localArcCentre[v] = vx.localPosition[v] + (d / std::cos(halfAlpha)) * normalized(toPrev + toNext);
   }
 }
@@ -98,15 +95,15 @@ void placeBlockVertices(Model& m, int b) {
   Vertices& vx = m.vertices;
   const int first = m.blocks.firstVertex[b], last = first + m.blocks.vertexCount[b];
   for (int v = first; v < last; ++v) {
-    vx.position[v] = centre + rotated(vx.localPosition[v], c, s);
-    vx.arcCentre[v] = centre + rotated(vx.localArcCentre[v], c, s);
-    vx.edgeDirection[v] = rotated(vx.localEdgeDirection[v], c, s);
+    vx.geometry[v].position = centre + rotated(vx.localPosition[v], c, s);
+    vx.geometry[v].arcCentre = centre + rotated(vx.localArcCentre[v], c, s);
+    vx.geometry[v].edgeDirection = rotated(vx.localEdgeDirection[v], c, s);
   }
 }
 
 FeatureHit nearestFeature(const Model& m, int corner, int blockB) {
-  const Vec2 centre = m.vertices.arcCentre[corner];
-  const double radius = m.vertices.arcRadius[corner];
+  const Vec2 centre = m.vertices.geometry[corner].arcCentre;
+  const double radius = m.vertices.geometry[corner].arcRadius;
   // Outside B exactly one feature's region holds the centre; inside (a sharp corner pressed in
   // further than its arc radius) several may, and the one with least overlap is the nearest.
   // A centre deep inside B may lie in no feature's region; then the nearest edge line serves.
@@ -134,8 +131,8 @@ FeatureHit nearestFeature(const Model& m, int corner, int blockB) {
 }
 
 FeatureHit followFeature(const Model& m, int corner, int blockB, int feature, FeatureKind kind) {
-  const Vec2 centre = m.vertices.arcCentre[corner];
-  const double radius = m.vertices.arcRadius[corner];
+  const Vec2 centre = m.vertices.geometry[corner].arcCentre;
+  const double radius = m.vertices.geometry[corner].arcRadius;
   const int count = 2 * m.blocks.vertexCount[blockB];
   int f = localIndex(m, blockB, feature, kind);
   int previousStep = 0;
@@ -151,7 +148,7 @@ FeatureHit followFeature(const Model& m, int corner, int blockB, int feature, Fe
 
 double contactLength(const Model& m, int corner, const FeatureHit& hit) {
   const Vertices& vx = m.vertices;
-  const Vec2 here = vx.position[corner];
+  const Vec2 here = vx.geometry[corner].position;
   // The edges of B the corner may share a face with: the contacted edge, or both edges of the
   // contacted corner.
   const int edgesOfB[2] = {hit.kind == FeatureKind::Edge ? hit.feature : vx.prev[hit.feature], hit.feature};
@@ -159,18 +156,18 @@ double contactLength(const Model& m, int corner, const FeatureHit& hit) {
   double length = 0.0;
   const int before = vx.prev[corner], after = vx.next[corner];
   for (const int other : {before, after}) {
-    const Vec2 far = vx.position[other];
-    const double edgeLength = vx.edgeLength[other == after ? corner : before];
+    const Vec2 far = vx.geometry[other].position;
+    const double edgeLength = vx.geometry[other == after ? corner : before].edgeLength;
     double share = 0.0;
     for (int k = 0; k < candidates; ++k) {
       const int e = edgesOfB[k];
-      const Vec2 origin = vx.position[e], along = vx.edgeDirection[e], out = outward(along);
+      const Vec2 origin = vx.geometry[e].position, along = vx.geometry[e].edgeDirection, out = outward(along);
       const double sHere = dot(here - origin, along), sFar = dot(far - origin, along);
       if (sHere == sFar) continue;
       const double perUnitAlong = 1.0 / (sFar - sHere);
       // A's edge from `here` to `far`, clipped to B's edge; it shares the face when its clipped
       // far end is within the contact tolerance of B's edge line.
-      const double c0 = std::clamp(sHere, 0.0, vx.edgeLength[e]), c1 = std::clamp(sFar, 0.0, vx.edgeLength[e]);
+      const double c0 = std::clamp(sHere, 0.0, vx.geometry[e].edgeLength), c1 = std::clamp(sFar, 0.0, vx.geometry[e].edgeLength);
       const double gapHere = dot(here - origin, out), gapFar = dot(far - origin, out);
       const double gapAtClippedFar = gapHere + (gapFar - gapHere) * (c1 - sHere) * perUnitAlong;
       if (std::abs(gapAtClippedFar) > m.contactTolerance) continue;

@@ -144,7 +144,7 @@ void addBlock(Model& m, const BlockInput& in) {
   for (const Vec2& p : in.polygon) {
     m.vertices.block.push_back(block);
     m.vertices.localPosition.push_back(p - c);
-    m.vertices.position.push_back(p);
+    m.vertices.geometry.push_back({p, {}, {}, 0.0, 0.0});
   }
 }
 

@@ -57,10 +57,10 @@ Grid collect(const Model& m) {
     std::vector<int> cell;
     for (int v = b.firstVertex[k]; v < b.firstVertex[k] + b.vertexCount[k]; ++v) {
       cell.push_back(static_cast<int>(g.points.size()));
-      g.points.push_back(m.vertices.position[v]);
+      g.points.push_back(m.vertices.geometry[v].position);
       // Where the vertex started: the block's first centroid plus the vertex at zero rotation.
-      g.displacement.push_back(m.vertices.position[v] - (b.initialCentroid[k] + m.vertices.localPosition[v]));
-      g.velocity.push_back(b.velocity[k] + b.angularVelocity[k] * perp(m.vertices.position[v] - b.centroid[k]));
+      g.displacement.push_back(m.vertices.geometry[v].position - (b.initialCentroid[k] + m.vertices.localPosition[v]));
+      g.velocity.push_back(b.velocity[k] + b.angularVelocity[k] * perp(m.vertices.geometry[v].position - b.centroid[k]));
     }
     g.cells.push_back(cell);
     g.types.push_back(kPolygon);

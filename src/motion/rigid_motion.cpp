@@ -81,7 +81,7 @@ double rigidBlockTimeStep(const Model& m, double frac) {
     if (anyFree && !m.blocks.movesFreely(b)) continue;
     minMass = std::min(minMass, m.blocks.mass[b]);
     const int first = m.blocks.firstVertex[b], last = first + m.blocks.vertexCount[b];
-    for (int v = first; v < last; ++v) longestEdge = std::max(longestEdge, m.vertices.edgeLength[v]);
+    for (int v = first; v < last; ++v) longestEdge = std::max(longestEdge, m.vertices.geometry[v].edgeLength);
   }
   double maxStiffness = 0.0;
   for (const JointMaterial& j : m.jointMaterials) {

@@ -29,9 +29,9 @@ TEST(ContactGeometry, RightAngleCornerArcHasRadiusDAndCentreOnTheBisector) {
   Scene s = sceneFromText(blockOnBase(), "arc");
   const Model& m = s.model;
   const int corner = m.blocks.firstVertex[1];  // (-0.5, 0) of "top"
-  EXPECT_NEAR(m.vertices.arcRadius[corner], 0.01, 1e-15);
-  EXPECT_NEAR(m.vertices.arcCentre[corner].x, -0.49, 1e-12);
-  EXPECT_NEAR(m.vertices.arcCentre[corner].y, 0.01, 1e-12);
+  EXPECT_NEAR(m.vertices.geometry[corner].arcRadius, 0.01, 1e-15);
+  EXPECT_NEAR(m.vertices.geometry[corner].arcCentre.x, -0.49, 1e-12);
+  EXPECT_NEAR(m.vertices.geometry[corner].arcCentre.y, 0.01, 1e-12);
 }
 
 TEST(ContactGeometry, EdgeToEdgeContactIsTwoCornerEdgeContactsOfHalfLength) {
@@ -61,8 +61,8 @@ TEST(ContactGeometry, NormalVariesContinuouslyAsABlockRollsOverACorner) {
   const int top = 1;
   const int corner = m.blocks.firstVertex[top];  // bottom-left corner of "top"
   const Vec2 arcOffset = m.vertices.localArcCentre[corner];
-  const double rA = m.vertices.arcRadius[corner], rB = m.vertices.arcRadius[m.blocks.firstVertex[0] + 2];
-  const Vec2 baseArc = m.vertices.arcCentre[m.blocks.firstVertex[0] + 2];
+  const double rA = m.vertices.geometry[corner].arcRadius, rB = m.vertices.geometry[m.blocks.firstVertex[0] + 2].arcRadius;
+  const Vec2 baseArc = m.vertices.geometry[m.blocks.firstVertex[0] + 2].arcCentre;
   Vec2 previous{0.0, 0.0};
   double largestTurn = 0.0;
   const int steps = 2000;
@@ -89,8 +89,8 @@ TEST(ContactGeometry, CornerToCornerNormalJoinsTheArcCentres) {
   const int baseCorner = m.blocks.firstVertex[0] + 2;  // (1.5, 0)
   // Put the top block's bottom-left arc diagonally above-right of the base's top-right arc.
   const Vec2 direction = normalized(Vec2{1.0, 1.0});
-  const double touch = m.vertices.arcRadius[corner] + m.vertices.arcRadius[baseCorner] - 1e-4;
-  const Vec2 target = m.vertices.arcCentre[baseCorner] + touch * direction;
+  const double touch = m.vertices.geometry[corner].arcRadius + m.vertices.geometry[baseCorner].arcRadius - 1e-4;
+  const Vec2 target = m.vertices.geometry[baseCorner].arcCentre + touch * direction;
   place(m, 1, target - m.vertices.localArcCentre[corner], 0.0);
   const FeatureHit hit = nearestFeature(m, corner, 0);
   EXPECT_EQ(hit.kind, FeatureKind::Corner);
