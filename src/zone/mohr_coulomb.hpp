@@ -61,6 +61,27 @@ inline void shearReturn(const MohrCoulombProperties& mc, double a1, double a2, d
   for (int i = 0; i < 3; ++i) d[i] = -lambdaMain * dnMain[i] - lambdaSecond * dnSecond[i];
 }
 
+// Near the apex a face return can end beyond the other surface: the shear return with its
+// largest stress above the tensile strength, or the tension return with the shear criterion
+// violated. The stress then belongs on the corner of the shear face and the tension plane, and
+// the two consistency conditions, with the shear flow n_s = (1, 0, -N_psi) and the tension flow
+// n_t = (0, 0, -1), give the two multipliers:
+//   fs - l_s m_s.D n_s - l_t m_s.D n_t = 0,   ft - l_s m_t.D n_s - l_t m_t.D n_t = 0.
+// The intermediate stress, held by neither surface, is kept between the other two.
+inline std::uint8_t cornerReturn(const MohrCoulombProperties& mc, double a1, double a2, double s1, double s2, double s3,
+                                 double fs, double ft, double d[3]) {
+  const double nPsi = mc.nPsi, nPhi = mc.nPhi;
+  const double dnS[3] = {a1 - a2 * nPsi, a2 * (1.0 - nPsi), a2 - a1 * nPsi};
+  const double dnT[3] = {-a2, -a2, -a1};
+  const double ss = dnS[0] - nPhi * dnS[2], st = dnT[0] - nPhi * dnT[2];  // m_s = (1, 0, -N_phi)
+  const double ts = -dnS[2], tt = -dnT[2];                                // m_t = (0, 0, -1)
+  const double det = ss * tt - st * ts;
+  const double lS = (fs * tt - st * ft) / det, lT = (ss * ft - ts * fs) / det;
+  for (int i = 0; i < 3; ++i) d[i] = -lS * dnS[i] - lT * dnT[i];
+  d[1] = std::clamp(s2 + d[1], s1 + d[0], s3 + d[2]) - s2;
+  return ShearNow | TensionNow;
+}
+
 // Corrects the trial stress (sxx, syy, sxy, szz) onto the yield surface; a1 = K + 4G/3,
 // a2 = K - 2G/3. Returns ShearNow, TensionNow or Elastic.
 inline std::uint8_t mohrCoulombReturn(const MohrCoulombProperties& mc, double a1, double a2, double& sxx, double& syy,
@@ -89,10 +110,33 @@ inline std::uint8_t mohrCoulombReturn(const MohrCoulombProperties& mc, double a1
     d[0] = lambda * a2;
     d[1] = lambda * a2;
     d[2] = lambda * a1;
+    // Where s2 too would stay above the cut-off, both are returned onto it, each with its own
+    // tension flow: D (l2 e2 + l3 e3) = (T - s2, T - s3) on those two, a1 on the diagonal and
+    // a2 off it; s1 moves by a2 (l2 + l3).
+    const double s2 = p[order[1]];
+    if (s2 + d[1] > mc.tension) {
+      const double det = a1 * a1 - a2 * a2;
+      const double g2 = mc.tension - s2, g3 = ft;
+      const double l2 = (a1 * g2 - a2 * g3) / det, l3 = (a1 * g3 - a2 * g2) / det;
+      d[0] = a2 * (l2 + l3);
+      d[1] = g2;
+      d[2] = g3;
+      // And all three where s1 would end above it: the isotropic return onto the apex of the
+      // cut-off, all three at T.
+      if (s1 + d[0] > mc.tension) {
+        d[0] = mc.tension - s1;
+        d[1] = g2;
+        d[2] = g3;
+      }
+    }
     state = TensionNow;
+    const double after1 = s1 + d[0], after3 = p[order[2]] + d[2];
+    if (after1 - after3 * mc.nPhi + 2.0 * mc.cohesion * sqrtNPhi < 0.0)
+      state = cornerReturn(mc, a1, a2, p[order[0]], p[order[1]], s3, fs, ft, d);
   } else {
     shearReturn(mc, a1, a2, p[order[0]], p[order[1]], s3, fs, d);
     state = ShearNow;
+    if (s3 + d[2] > mc.tension) state = cornerReturn(mc, a1, a2, p[order[0]], p[order[1]], s3, fs, ft, d);
   }
   for (int k = 0; k < 3; ++k) p[order[k]] += d[k];
   // Back to x, y: the principal directions are kept (the correction is coaxial).

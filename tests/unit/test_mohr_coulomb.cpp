@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "core/errors.hpp"
 #include "requirements.hpp"
@@ -186,4 +187,33 @@ TEST(MohrCoulomb, AFaceReturnThatKeepsTheOrderIsUnchangedByTheEdgeLogic) {
   EXPECT_NEAR(p[0] - 3.0 * p[2] + 2e6 * std::sqrt(3.0), 0.0, 1e-6);
   const double lambda = (-30e6 - sxx) / (a1 - a2 * nPsi);
   EXPECT_NEAR(szz, -10e6 - lambda * a2 * (1.0 - nPsi), 1e-6);
+}
+
+TEST(MohrCoulomb, EveryReturnNearTheApexEndsOnOrInsideBothSurfaces) {
+  VDEC_REQUIREMENTS("REQ-MC-004");
+  // Trial stresses around the apex of the shear cone, with the tension cut-off at and below it:
+  // the face returns alone can end beyond the other surface (a shear return above the cut-off,
+  // a tension return outside the shear face, two stresses above the cut-off). Every returned
+  // state must satisfy f_s >= 0 and s3 <= T (to round-off).
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const double phi : {30.0, 40.0})
+    for (const double psi : {0.0, 10.0})
+      for (const double tensionShare : {1.0, 0.5, 0.3}) {
+        const double c = 1e6, apex = c / std::tan(phi * std::numbers::pi / 180.0);
+        const MohrCoulombProperties mc = material(phi, c, psi, tensionShare * apex);
+        const double k = 2.0 * c * std::sqrt(mc.nPhi);
+        int returns = 0, outside = 0;
+        for (int i = 0; i < 20000; ++i) {
+          double sxx = apex * (1.0 - 3.0 * std::abs(u(random))) + 0.5 * c * u(random);
+          double syy = apex * (1.0 - 3.0 * std::abs(u(random))) + 0.5 * c * u(random);
+          double sxy = 0.5 * c * u(random), szz = apex * (1.0 - 3.0 * std::abs(u(random)));
+          if (mohrCoulombReturn(mc, a1, a2, sxx, syy, sxy, szz) == Elastic) continue;
+          ++returns;
+          const auto p = principal(sxx, syy, sxy, szz);
+          if (p[0] - p[2] * mc.nPhi + k < -1.0 || p[2] > mc.tension + 1.0) ++outside;
+        }
+        EXPECT_GT(returns, 5000);
+        EXPECT_EQ(outside, 0) << "phi " << phi << ", psi " << psi << ", T = " << tensionShare << " x apex";
+      }
 }
