@@ -221,8 +221,7 @@ void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
       if (yielding) mergedStates.push_back(keptStates[k]);
       ++k;
     };
-    const Key none{-1, -1};
-    Key last = none;
+    Key last{-1, -1};  // a key met twice (see byKeyThenClosed) is carried once
     for (const auto& [key, index] : previousIndex) {
       const Contact& old = previous[index];
       if (rescanned(old.blockA) || rescanned(old.blockB) || key == last) continue;

@@ -19,6 +19,19 @@ struct MohrCoulombProperties {
 // Plastic state of a zone this step.
 enum PlasticState : std::uint8_t { Elastic = 0, ShearNow = 1, TensionNow = 2, PlasticInPast = 4 };
 
+// The elastic response D n to the shear flow of the main face (s1, s3), n = (1, 0, -N_psi), D
+// the elastic matrix (a1 on the diagonal, a2 off it).
+inline void mainFaceResponse(double a1, double a2, double nPsi, double dn[3]) {
+  dn[0] = a1 - a2 * nPsi;
+  dn[1] = a2 * (1.0 - nPsi);
+  dn[2] = a2 - a1 * nPsi;
+}
+
+// The shear criterion f = s1 - s3 N_phi + 2 c sqrt(N_phi), negative beyond the surface.
+inline double shearCriterion(const MohrCoulombProperties& mc, double s1, double s3) {
+  return s1 - s3 * mc.nPhi + 2.0 * mc.cohesion * std::sqrt(mc.nPhi);
+}
+
 // The corrections d to the ordered principal stresses s1 <= s2 <= s3 that return them onto the
 // shear yield surface, f = s1 - s3 N_phi + 2 c sqrt(N_phi) < 0 at the trial (fs), with the
 // flow g = s1 - s3 N_psi: d = -lambda D n, n = (1, 0, -N_psi), D the elastic matrix (a1 on
@@ -30,8 +43,9 @@ enum PlasticState : std::uint8_t { Elastic = 0, ShearNow = 1, TensionNow = 2, Pl
 // out equal.
 inline void shearReturn(const MohrCoulombProperties& mc, double a1, double a2, double s1, double s2, double s3,
                         double fs, double d[3]) {
-  const double nPhi = mc.nPhi, nPsi = mc.nPsi, k = 2.0 * mc.cohesion * std::sqrt(nPhi);
-  const double dnMain[3] = {a1 - a2 * nPsi, a2 * (1.0 - nPsi), a2 - a1 * nPsi};  // face (1, 3)
+  const double nPhi = mc.nPhi, nPsi = mc.nPsi;
+  double dnMain[3];
+  mainFaceResponse(a1, a2, nPsi, dnMain);
   const double onMain = dnMain[0] - nPhi * dnMain[2];                            // its m . D n
   const double lambda = fs / onMain;
   for (int i = 0; i < 3; ++i) d[i] = -lambda * dnMain[i];
@@ -45,13 +59,13 @@ inline void shearReturn(const MohrCoulombProperties& mc, double a1, double a2, d
     dnSecond[1] = a1 - a2 * nPsi;
     dnSecond[2] = a2 - a1 * nPsi;
     cross = dnSecond[0] - nPhi * dnSecond[2];
-    fSecond = s2 - s3 * nPhi + k;
+    fSecond = shearCriterion(mc, s2, s3);
   } else {  // face (1, 2): n = (1, -N_psi, 0), f = s1 - s2 N_phi + k
     dnSecond[0] = a1 - a2 * nPsi;
     dnSecond[1] = a2 - a1 * nPsi;
     dnSecond[2] = a2 * (1.0 - nPsi);
     cross = dnSecond[0] - nPhi * dnSecond[2];
-    fSecond = s1 - s2 * nPhi + k;
+    fSecond = shearCriterion(mc, s1, s2);
   }
   // [onMain cross; cross onMain] (lambda_main, lambda_second) = (fs, fSecond): the two faces are
   // alike, so the system is symmetric with equal diagonal.
@@ -70,8 +84,9 @@ inline void shearReturn(const MohrCoulombProperties& mc, double a1, double a2, d
 // The intermediate stress, held by neither surface, is kept between the other two.
 inline std::uint8_t cornerReturn(const MohrCoulombProperties& mc, double a1, double a2, double s1, double s2, double s3,
                                  double fs, double ft, double d[3]) {
-  const double nPsi = mc.nPsi, nPhi = mc.nPhi;
-  const double dnS[3] = {a1 - a2 * nPsi, a2 * (1.0 - nPsi), a2 - a1 * nPsi};
+  const double nPhi = mc.nPhi;
+  double dnS[3];
+  mainFaceResponse(a1, a2, mc.nPsi, dnS);
   const double dnT[3] = {-a2, -a2, -a1};
   const double ss = dnS[0] - nPhi * dnS[2], st = dnT[0] - nPhi * dnT[2];  // m_s = (1, 0, -N_phi)
   const double ts = -dnS[2], tt = -dnT[2];                                // m_t = (0, 0, -1)
@@ -94,7 +109,7 @@ inline std::uint8_t mohrCoulombReturn(const MohrCoulombProperties& mc, double a1
   std::sort(order, order + 3, [&](int i, int j) { return p[i] < p[j]; });
   const double s1 = p[order[0]], s3 = p[order[2]];
   const double sqrtNPhi = std::sqrt(mc.nPhi);
-  const double fs = s1 - s3 * mc.nPhi + 2.0 * mc.cohesion * sqrtNPhi;
+  const double fs = shearCriterion(mc, s1, s3);
   const double ft = mc.tension - s3;
   if (fs >= 0.0 && ft >= 0.0) return Elastic;
   // Which surface: h = 0 is the diagonal between the shear and tension yield lines in the
@@ -118,20 +133,13 @@ inline std::uint8_t mohrCoulombReturn(const MohrCoulombProperties& mc, double a1
       const double det = a1 * a1 - a2 * a2;
       const double g2 = mc.tension - s2, g3 = ft;
       const double l2 = (a1 * g2 - a2 * g3) / det, l3 = (a1 * g3 - a2 * g2) / det;
-      d[0] = a2 * (l2 + l3);
       d[1] = g2;
       d[2] = g3;
-      // And all three where s1 would end above it: the isotropic return onto the apex of the
-      // cut-off, all three at T.
-      if (s1 + d[0] > mc.tension) {
-        d[0] = mc.tension - s1;
-        d[1] = g2;
-        d[2] = g3;
-      }
+      // And all three at T where s1 would end above it too.
+      d[0] = std::min(a2 * (l2 + l3), mc.tension - s1);
     }
     state = TensionNow;
-    const double after1 = s1 + d[0], after3 = p[order[2]] + d[2];
-    if (after1 - after3 * mc.nPhi + 2.0 * mc.cohesion * sqrtNPhi < 0.0)
+    if (shearCriterion(mc, s1 + d[0], s3 + d[2]) < 0.0)
       state = cornerReturn(mc, a1, a2, p[order[0]], p[order[1]], s3, fs, ft, d);
   } else {
     shearReturn(mc, a1, a2, p[order[0]], p[order[1]], s3, fs, d);
