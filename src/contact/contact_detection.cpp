@@ -35,9 +35,6 @@ std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m
     maxY_[b] = std::max(maxY_[b], p.y + inflate);
   };
   for (int v = 0; v < m.vertices.size(); ++v) extend(m.vertices.block[v], m.vertices.geometry[v].position);
-  // Deformable blocks have no contact vertices yet; their gridpoints give their boxes, so that
-  // one coming near another block is caught rather than passing through it unseen.
-  for (int i = 0; i < m.gridpoints.size(); ++i) extend(m.gridpoints.block[i], m.gridpoints.position[i]);
   return overlappingPairs(minX_, maxX_, minY_, maxY_, grid_);
 }
 
@@ -89,13 +86,6 @@ void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
   if (moved != nullptr)
     pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [&](const auto& p) { return !rescanned(p.first) && !rescanned(p.second); }),
                 pairs.end());
-  for (const auto& [a, b] : pairs) {
-    if (!m.blocks.deformable[a] && !m.blocks.deformable[b]) continue;
-    throw GeometryError("block '" + m.blocks.name[m.blocks.deformable[a] ? a : b] + "' is deformable and its bounding "
-                        "box comes within the contact tolerance of block '" + m.blocks.name[m.blocks.deformable[a] ? b : a] +
-                        "' (at cycle " + std::to_string(m.cycle) + "): contacts on deformable blocks are not "
-                        "implemented yet; keep deformable blocks apart from other blocks, or make them rigid");
-  }
   std::vector<int> neighbourStart(n + 1, 0), neighbours(2 * pairs.size());
   for (const auto& [a, b] : pairs) {
     ++neighbourStart[a + 1];

@@ -1,5 +1,6 @@
 #include "contact/contact_forces.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -52,12 +53,67 @@ FeatureHit trackFeature(const Model& m, Contact& c) {
 }
 
 
+// Where a contact acts on a deformable block: one gridpoint (a corner of its outline), or the
+// two ends of an outline edge in proportion to the contact point's place along it (1.3.3.4.2).
+// A weight of 0 first marks a rigid block.
+struct BlockPoint {
+  int gridpoint[2] = {-1, -1};
+  double weight[2] = {0.0, 0.0};
+};
+
+BlockPoint cornerPoint(const Model& m, int corner) {
+  BlockPoint p;
+  if (const int g = m.vertices.gridpoint[corner]; g >= 0) {
+    p.gridpoint[0] = g;
+    p.weight[0] = 1.0;
+  }
+  return p;
+}
+
+BlockPoint featurePoint(const Model& m, const FeatureHit& hit, Vec2 where) {
+  const Vertices& vx = m.vertices;
+  BlockPoint p;
+  const int g = vx.gridpoint[hit.feature];
+  if (g < 0) return p;
+  if (hit.kind == FeatureKind::Corner) {
+    p.gridpoint[0] = g;
+    p.weight[0] = 1.0;
+    return p;
+  }
+  const VertexGeometry& e = vx.geometry[hit.feature];
+  const double along = std::clamp(dot(where - e.position, e.edgeDirection) / e.edgeLength, 0.0, 1.0);
+  // The first weight must be positive (it marks the deformable block): a point at the far end
+  // is that end's alone.
+  if (along >= 1.0) {
+    p.gridpoint[0] = vx.gridpoint[vx.next[hit.feature]];
+    p.weight[0] = 1.0;
+    return p;
+  }
+  p.gridpoint[0] = g;
+  p.weight[0] = 1.0 - along;
+  p.gridpoint[1] = vx.gridpoint[vx.next[hit.feature]];
+  p.weight[1] = along;
+  return p;
+}
+
+Vec2 pointVelocity(const Model& m, const BlockPoint& p) {
+  Vec2 v = p.weight[0] * m.gridpoints.velocity[p.gridpoint[0]];
+  if (p.weight[1] > 0.0) v += p.weight[1] * m.gridpoints.velocity[p.gridpoint[1]];
+  return v;
+}
+
+void addPointForce(Model& m, const BlockPoint& p, Vec2 f) {
+  m.gridpoints.contactForce[p.gridpoint[0]] += p.weight[0] * f;
+  if (p.weight[1] > 0.0) m.gridpoints.contactForce[p.gridpoint[1]] += p.weight[1] * f;
+}
+
 }  // namespace
 
 ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) {
   ContactStepTotals totals;
   Blocks& bl = m.blocks;
   const double overlapLimit = 0.5 * m.roundingLength;
+  std::fill(m.gridpoints.contactForce.begin(), m.gridpoints.contactForce.end(), Vec2{});
   for (std::size_t i = 0; i < m.contacts.size(); ++i) {
     Contact& c = m.contacts[i];
     if (c.open && motionClock < c.closableAt) {
@@ -85,8 +141,15 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
     const int a = c.blockA, b = c.blockB;
     const Vec2 ra = hit.point - bl.centroid[a], rb = hit.point - bl.centroid[b];
     // Velocities are those of the half step just ended, so v dt is this step's increment.
-    const Vec2 va = bl.velocity[a] + bl.angularVelocity[a] * perp(ra);
-    const Vec2 vb = bl.velocity[b] + bl.angularVelocity[b] * perp(rb);
+    const bool outlines = bl.deformable[a] || bl.deformable[b];
+    const BlockPoint pa = outlines ? cornerPoint(m, c.corner) : BlockPoint{};
+    // B is taken at the point facing A's: where a gridpoint of A is, the material point of B
+    // across from it (not the rounded tip's, up to d away), so that the relative motion is that
+    // of two material points and a uniform strain shared by both sides shears no joint.
+    const Vec2 facing = pa.weight[0] > 0.0 ? m.vertices.geometry[c.corner].position : hit.point;
+    const BlockPoint pb = outlines ? featurePoint(m, hit, facing) : BlockPoint{};
+    const Vec2 va = pa.weight[0] > 0.0 ? pointVelocity(m, pa) : bl.velocity[a] + bl.angularVelocity[a] * perp(ra);
+    const Vec2 vb = pb.weight[0] > 0.0 ? pointVelocity(m, pb) : bl.velocity[b] + bl.angularVelocity[b] * perp(rb);
     const Vec2 tangent{hit.normal.y, -hit.normal.x};
     const double dus = dot(va - vb, tangent) * dt;
 
@@ -124,10 +187,18 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
 
     // Force on A from B; the shear force resists A's motion along the tangent.
     const Vec2 f = fn * hit.normal - fs * tangent;
-    bl.force[a] += f;
-    bl.moment[a] += cross(ra, f);
-    bl.force[b] -= f;
-    bl.moment[b] -= cross(rb, f);
+    if (pa.weight[0] > 0.0) {
+      addPointForce(m, pa, f);
+    } else {
+      bl.force[a] += f;
+      bl.moment[a] += cross(ra, f);
+    }
+    if (pb.weight[0] > 0.0) {
+      addPointForce(m, pb, -f);
+    } else {
+      bl.force[b] -= f;
+      bl.moment[b] -= cross(rb, f);
+    }
 
     if (!c.open) {
       if (j.law == JointLaw::ContinuouslyYielding && (bl.movesFreely(a) || bl.movesFreely(b))) {

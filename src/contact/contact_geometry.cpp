@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "contact/deformable_outline.hpp"
+
 namespace vdec {
 
 namespace {
@@ -19,6 +21,7 @@ struct Evaluation {
 Evaluation evaluate(const Model& m, int blockB, int localFeature, Vec2 centre, double radius) {
   const Vertices& vx = m.vertices;
   const int v = m.blocks.firstVertex[blockB] + localFeature / 2;
+  const bool outline = m.blocks.deformable[blockB];
   Evaluation out;
   if (localFeature % 2 == 1) {
     const Vec2 a = vx.geometry[v].position, e = vx.geometry[v].edgeDirection;
@@ -28,10 +31,30 @@ Evaluation evaluate(const Model& m, int blockB, int localFeature, Vec2 centre, d
     // Regions overlap by a sliver of round-off so that a centre exactly on a boundary (blocks
     // meeting at a grid point) belongs to both neighbours, never to neither.
     const double slack = 1e-9 * d;
-    if (s < d - slack) out.step = -1;
-    else if (s > vx.geometry[v].edgeLength - d + slack) out.step = +1;
+    if (!outline) {
+      if (s < d - slack) out.step = -1;
+      else if (s > vx.geometry[v].edgeLength - d + slack) out.step = +1;
+    } else {
+      // A point corner has no region of its own: the edges on either side of it meet on the
+      // line through it along the mean of their normals, i.e. where the mean of their
+      // directions projects to zero. A rounded corner's arc starts d along the edge, as above.
+      const int w = vx.next[v];
+      const bool pointBefore = vx.geometry[v].arcRadius == 0.0, pointAfter = vx.geometry[w].arcRadius == 0.0;
+      if (pointBefore ? dot(centre - a, e + vx.geometry[vx.prev[v]].edgeDirection) < -slack : s < d - slack)
+        out.step = -1;
+      else if (pointAfter ? dot(centre - vx.geometry[w].position, e + vx.geometry[w].edgeDirection) > slack
+                          : s > vx.geometry[v].edgeLength - d + slack)
+        out.step = +1;
+    }
     const double h = dot(centre - a, nOut);
     out.hit = {v, FeatureKind::Edge, nOut, centre - (0.5 * (radius + h)) * nOut, radius - h};
+    return out;
+  }
+  if (outline && vx.geometry[v].arcRadius == 0.0) {
+    // A point corner is never the feature: a walk passes through it to the edge on the centre's
+    // side of the dividing line (the same test as the edges'). As a feature it would claim
+    // centres inside B too, and report a gap where the corner overlaps.
+    out.step = dot(centre - vx.geometry[v].position, vx.geometry[vx.prev[v]].edgeDirection + vx.geometry[v].edgeDirection) < 0.0 ? -1 : +1;
     return out;
   }
   const Vec2 o = vx.geometry[v].arcCentre;
@@ -68,6 +91,9 @@ void computeBoundaryGeometry(Model& m) {
   vx.localEdgeDirection.resize(count);
   vx.localArcCentre.resize(count);
   vx.geometry.resize(count);
+  // Rigid blocks built without attachDeformableOutlines (tests) have only rigid vertices.
+  if (vx.gridpoint.size() != static_cast<std::size_t>(count)) vx.gridpoint.assign(count, -1);
+  if (vx.pointCorner.size() != static_cast<std::size_t>(count)) vx.pointCorner.assign(count, 0);
   for (int b = 0; b < m.blocks.size(); ++b) {
     const int first = m.blocks.firstVertex[b], n = m.blocks.vertexCount[b];
     for (int k = 0; k < n; ++k) {
@@ -81,6 +107,7 @@ void computeBoundaryGeometry(Model& m) {
     vx.localEdgeDirection[v] = (1.0 / vx.geometry[v].edgeLength) * edge;
   }
   for (int v = 0; v < count; ++v) {
+    if (vx.gridpoint[v] >= 0) continue;  // a deformable block's: placeOutlineVertices rounds it
     const Vec2 toPrev = -vx.localEdgeDirection[vx.prev[v]];
     const Vec2 toNext = vx.localEdgeDirection[v];
     const double halfAlpha = 0.5 * std::acos(std::clamp(dot(toPrev, toNext), -1.0, 1.0));  // alpha: interior angle
@@ -90,6 +117,10 @@ void computeBoundaryGeometry(Model& m) {
 }
 
 void placeBlockVertices(Model& m, int b) {
+  if (m.blocks.deformable[b]) {
+    placeOutlineVertices(m, b);
+    return;
+  }
   const double c = std::cos(m.blocks.rotation[b]), s = std::sin(m.blocks.rotation[b]);
   const Vec2 centre = m.blocks.centroid[b];
   Vertices& vx = m.vertices;

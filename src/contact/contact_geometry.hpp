@@ -19,7 +19,8 @@ struct FeatureHit {
 // Set-up time: neighbour ids, edge directions and lengths, and every corner's arc radius and
 // centre in the block's local frame.
 void computeBoundaryGeometry(Model& model);
-// World positions of vertices, arc centres and edge directions from a block's rigid motion.
+// World positions of vertices, arc centres and edge directions from a block's rigid motion, or
+// from a deformable block's gridpoints.
 void placeBlockVertices(Model& model, int block);
 
 // The feature of B nearest the corner, searching all of B's features.

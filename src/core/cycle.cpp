@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "contact/contact_forces.hpp"
+#include "contact/deformable_outline.hpp"
 #include "core/errors.hpp"
 #include "motion/gridpoint_motion.hpp"
 #include "motion/rigid_motion.hpp"
@@ -55,6 +56,10 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     if (settings_.staticSolve) {
       if (hasRigidBlocks_)
         throw SceneError("solver.static_solve: the direct solve covers deformable blocks only; this scene has rigid blocks");
+      if (hasContacts_)
+        throw SceneError("solver.static_solve: the direct solve assembles the zones of one block and not the joints "
+                         "between blocks, and this scene has " + std::to_string(bl.size()) + " blocks; relax it "
+                         "with explicit cycles instead (adaptive damping)");
       for (const BlockMaterial& mat : model_.blockMaterials)
         if (mat.plastic)
           throw SceneError("solver.static_solve: the direct solve is elastic, and block material '" + mat.name +
@@ -125,7 +130,12 @@ void Cycle::buildStages() {
   // Only the stages the scene needs: a single deformable block has no contacts, a scene of
   // rigid blocks no zones.
   if (hasContacts_) {
-    stages_.push_back({"contact-detection", [this] {
+    std::vector<int> outlined;
+    for (int b = 0; b < model_.blocks.size(); ++b)
+      if (model_.blocks.deformable[b]) outlined.push_back(b);
+    stages_.push_back({"contact-detection", [this, outlined] {
+                         // Deformable blocks' outlines follow their gridpoints' last motion.
+                         for (const int b : outlined) placeOutlineVertices(model_, b);
                          if (model_.cycle > 0) detection_.update(model_, largestStepDisplacement_);
                          motionClock_ += largestStepDisplacement_;
                        }});

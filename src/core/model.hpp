@@ -98,6 +98,9 @@ struct Gridpoints {
   std::vector<double> gravityMass;   // rho A / 3 from each zone around it
   std::vector<double> stiffness;     // k_i of 1.3-26 and 1.3-27 from the zones around it
   std::vector<std::uint8_t> driven;  // DriveX / DriveY: velocity prescribed (zero when fixed)
+  // The forces contacts put on the gridpoint this step (1.3.3.4.2), gathered in contact order so
+  // that the sum does not depend on threads; empty when no deformable block can touch another.
+  std::vector<Vec2> contactForce;
 
   int size() const { return static_cast<int>(block.size()); }
 };
@@ -154,9 +157,14 @@ struct VertexGeometry {
 };
 
 // Boundary vertices of all blocks. For a rigid block they move with its rigid motion;
-// the local fields are relative to the centroid at zero rotation.
+// the local fields are relative to the centroid at zero rotation. A deformable block's
+// vertices are the gridpoints of its outer outline and move with them.
 struct Vertices {
   std::vector<int> block;
+  std::vector<int> gridpoint;  // the gridpoint a deformable block's vertex is; -1 on a rigid block
+  // A vertex where the outline runs on nearly straight (or turns inwards): a point with no
+  // rounding, arc radius 0, whose neighbouring edges reach right up to it (see contact_geometry).
+  std::vector<std::uint8_t> pointCorner;
   std::vector<VertexGeometry> geometry;
   std::vector<Vec2> localPosition;
   std::vector<Vec2> localArcCentre;

@@ -126,7 +126,7 @@ void addDeformableBlock(Model& m, const std::string& name, int material, const M
   b.name.push_back(name);
   b.material.push_back(material);
   b.firstVertex.push_back(m.vertices.size());
-  b.vertexCount.push_back(0);  // no contact vertices until contacts on deformable blocks exist
+  b.vertexCount.push_back(0);  // its outline becomes its vertices in attachDeformableOutlines
   b.mass.push_back(density * area);
   b.inertia.push_back(0.0);
   b.driven.push_back(0);

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "contact/contact_geometry.hpp"
+#include "contact/deformable_outline.hpp"
 #include "core/errors.hpp"
 #include "geometry/block_cutting.hpp"
 #include "geometry/polygon.hpp"
@@ -435,6 +436,7 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
   if (m.jointMaterials.empty() && (m.blocks.size() > 1 || anyRigid))
     top.fail("joint_material", "at least one [[joint_material]] is required when the scene has more than one block or a "
                                "rigid block (the rigid-block time step, 1.3-28, takes the joint stiffness)");
+  if (m.blocks.size() > 1) attachDeformableOutlines(m);
   computeBoundaryGeometry(m);
   for (int b = 0; b < m.blocks.size(); ++b) placeBlockVertices(m, b);
 

@@ -35,6 +35,7 @@ MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha) {
   const GridpointZones& gz = m.gridpointZones;
   const double lose = 1.0 - 0.5 * alpha * dt, keep = 1.0 / (1.0 + 0.5 * alpha * dt);
   const Vec2 gravity = m.gravity;
+  const Vec2* contactForce = g.contactForce.empty() ? nullptr : g.contactForce.data();
   auto step = [&](int i, MotionStepTotals& t) {
     Vec2 zoneForce, absolute;
     for (int k = gz.start[i]; k < gz.start[i + 1]; ++k) {
@@ -46,15 +47,17 @@ MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha) {
     // the sums of the components' magnitudes, one square root per gridpoint.
     const double zoneMagnitude = norm(absolute);
     const Vec2 body = g.gravityMass[i] * gravity + g.appliedForce[i];
-    const Vec2 load = zoneForce + body;
+    // Contact forces are internal, like the zones': the joints' springs hold their energy.
+    const Vec2 internal = contactForce ? zoneForce + contactForce[i] : zoneForce;
+    const Vec2 load = internal + body;
     const Vec2 v0 = g.velocity[i];
     Vec2 v1 = v0;
     const double mass = g.mass[i];
     double unbalanced = 0.0;
     bool free = false;
-    auto advance = [&](bool driven, double u0, double force, double bodyForce, double zone) {
+    auto advance = [&](bool driven, double u0, double force, double bodyForce, double internalForce) {
       if (driven) {
-        t.externalWork -= zone * u0 * dt;  // the driver's work on the block through the zones
+        t.externalWork -= internalForce * u0 * dt;  // the driver's work on the block through zones and joints
         return u0;
       }
       free = true;
@@ -68,8 +71,8 @@ MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha) {
       t.kineticRate += mass * ubar * (u1 - u0) / dt;
       return u1;
     };
-    v1.x = advance(g.driven[i] & DriveX, v0.x, load.x, body.x, zoneForce.x);
-    v1.y = advance(g.driven[i] & DriveY, v0.y, load.y, body.y, zoneForce.y);
+    v1.x = advance(g.driven[i] & DriveX, v0.x, load.x, body.x, internal.x);
+    v1.y = advance(g.driven[i] & DriveY, v0.y, load.y, body.y, internal.y);
     // The largest unbalanced force and speed are kept squared and rooted once at the end:
     // the square root is monotonic, so the largest root is the root of the largest square.
     if (free) {

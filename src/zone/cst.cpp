@@ -56,6 +56,19 @@ void prepareZones(Model& m) {
       ++degree[n[c] + 1];
     }
   }
+  // 1.3-26: a gridpoint on an outline that can touch another block also carries the joints'
+  // stiffness, the larger of kn and ks times the two outline segments at it.
+  if (!g.contactForce.empty()) {
+    double perLength = 0.0, point = 0.0;  // Pa/m of the joint laws; N/m of the point-contact law
+    for (const JointMaterial& j : m.jointMaterials)
+      (j.law == JointLaw::PointContact ? point : perLength) =
+          std::max(j.law == JointLaw::PointContact ? point : perLength, std::max(j.kn, j.ks));
+    const Vertices& vx = m.vertices;
+    for (int v = 0; v < vx.size(); ++v)
+      if (vx.gridpoint[v] >= 0)
+        g.stiffness[vx.gridpoint[v]] +=
+            point + perLength * (vx.geometry[v].edgeLength + vx.geometry[vx.prev[v]].edgeLength);
+  }
   g.mass = g.gravityMass;
   // Gridpoint -> (zone, corner) slots, in zone order: the gather order is fixed.
   GridpointZones& gz = m.gridpointZones;

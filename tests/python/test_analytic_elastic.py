@@ -525,6 +525,9 @@ def test_homogeneous_displacement_of_a_uniaxial_sample():
     # Held elsewhere: the field shifts with the held point.
     ux, uy = el.plane_strain_homogeneous_displacement(x=1.0, y=2.0, sigma_xx=0.0, sigma_yy=-1e6, x0=1.0, y0=1.0, **ROCK)
     assert ux == pytest.approx(0.0, abs=1e-20) and uy == pytest.approx(-0.9375e-4, rel=1e-12)
+    # A block above a joint of kn = 1e10 Pa/m under 1 MPa: 0.1 mm more down, ux unchanged.
+    ux, uy = el.plane_strain_homogeneous_displacement(x=1.0, y=2.0, sigma_xx=0.0, sigma_yy=-1e6, shift_y=-1e-4, **ROCK)
+    assert ux == pytest.approx(3.125e-5, rel=1e-12) and uy == pytest.approx(-2.875e-4, rel=1e-12)
 
 
 @REQ

@@ -244,35 +244,13 @@ TEST(Zones, BadZoningAndBoundaryInputAreErrorsNamingTheKey) {
             std::string::npos);
 }
 
-TEST(Zones, HistoriesThatNameNothingAndDeformableBlocksNearOthersAreErrors) {
+TEST(Zones, HistoriesThatNameNothingAreErrors) {
   VDEC_REQUIREMENTS("REQ-ZONE-005");
   const std::string outside = quadScene(2, 2, "[[history]]\nname = \"s\"\nquantity = \"zone.syy\"\nblock = \"patch\"\npoint = [9.0, 9.0]\n");
   EXPECT_NE(sceneError(outside, "h-outside").find("key 'history[0].point': is not inside block 'patch'"), std::string::npos)
       << sceneError(outside, "h-outside");
   const std::string noPoint = quadScene(2, 2, "[[history]]\nname = \"u\"\nquantity = \"gridpoint.displacement_x\"\nblock = \"patch\"\n");
   EXPECT_NE(sceneError(noPoint, "h-nopoint").find("key 'history[0].point': is required"), std::string::npos);
-  // A rigid block beside the deformable one, within the contact tolerance: contacts on
-  // deformable blocks do not exist yet, so the run must refuse rather than let them pass.
-  const std::string neighbour = quadScene(2, 2, R"(
-[[joint_material]]
-name = "j"
-kn = 1e9
-ks = 1e9
-[[block]]
-name = "wall"
-material = "rock"
-vertices = [[2.405, 0.0], [3.5, 0.0], [3.5, 2.0], [2.405, 2.0]]
-fix = ["x", "y", "rotation"]
-)");
-  Scene s = sceneFromText(neighbour, "near");
-  try {
-    Cycle cycle(s.model, s.settings, {});
-    FAIL() << "a deformable block near another block was accepted";
-  } catch (const GeometryError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("block 'patch' is deformable and its bounding box comes within the contact tolerance of block 'wall'"), std::string::npos)
-        << what;
-  }
 }
 
 TEST(Zones, DirectSolveAndDynamicRelaxationReachTheSameEquilibrium) {

@@ -107,14 +107,15 @@ def plane_strain_uniaxial(*, E, nu, sigma_yy):
     return plane_strain_biaxial(E=E, nu=nu, sigma_xx=0.0, sigma_yy=sigma_yy)
 
 
-def plane_strain_homogeneous_displacement(*, x, y, E, nu, sigma_xx, sigma_yy, x0=0.0, y0=0.0):
+def plane_strain_homogeneous_displacement(*, x, y, E, nu, sigma_xx, sigma_yy, x0=0.0, y0=0.0, shift_y=0.0):
     """(u_x, u_y) of a sample under uniform sigma_xx, sigma_yy (no shear, plane strain) held at
-    (x0, y0) without rotation: u_x = e_xx (x - x0), u_y = e_yy (y - y0), the strains of
+    (x0, y0) without rotation: u_x = e_xx (x - x0), u_y = e_yy (y - y0) + shift_y, the strains of
     plane_strain_biaxial. A sample on rollers along y = y0 with the corner (x0, y0) fixed is
-    held so.
+    held so. shift_y translates it: a block resting on another across a joint of normal
+    stiffness kn under sigma_yy = -p moves down by the joint's closure too, shift_y = -p / kn.
     """
     exx, eyy, _ = plane_strain_biaxial(E=E, nu=nu, sigma_xx=sigma_xx, sigma_yy=sigma_yy)
-    return exx * (_arr(x) - x0), eyy * (_arr(y) - y0)
+    return exx * (_arr(x) - x0), eyy * (_arr(y) - y0) + shift_y
 
 
 def young_poisson_from_plane_strain_uniaxial(*, sigma_yy, exx, eyy):

@@ -26,8 +26,10 @@ displacement_x, displacement_y, ...} (initial positions).
                                                                        problem ("" the plain run): a ratio
                                                                        of two runs' cycles
 
-of = "zones" (quantities sxx, syy, sxy, szz and, about `centre`, srr, stt, srt) or "gridpoints"
-(ux, uy and, about `centre`, ur, ut). Selection ranges on the initial position: x, y, r (about
+of = "zones" (quantities sxx, syy, sxy, szz and, about `centre`, srr, stt, srt), "gridpoints"
+(ux, uy and, about `centre`, ur, ut) or "contacts" (sn, the normal stress, compression positive,
+and tau, the shear stress: force over contact length; the closed contacts, at their present
+points; block selects block A, the side of the contact's corner). Selection ranges on the initial position: x, y, r (about
 centre) = [low, high]; angle = [low, high] in degrees about centre. The abscissa (for plots and
 the trapezoid weights of a gridpoint L2 norm) is r when a polar quantity or range is used,
 else x. Zones weight the L2 norm by their areas.
@@ -48,12 +50,28 @@ BUILTINS = {"ratio": ratio}
 
 ZONE_QUANTITIES = ("sxx", "syy", "sxy", "szz", "srr", "stt", "srt", "plastic")
 GRIDPOINT_QUANTITIES = ("ux", "uy", "ur", "ut")
+CONTACT_QUANTITIES = ("sn", "tau")
 POLAR = ("srr", "stt", "srt", "ur", "ut")
 SELECTION_KEYS = ("block", "centre", "x", "y", "r", "angle")
 
 
+def _contact_columns(results):
+    """The closed contacts of results["contacts"] as columns, placed at their present points."""
+    names = [b.get("name") for b in results.get("blocks") or []]
+    closed = [c for c in results.get("contacts") or [] if not c.get("open")]
+    return {
+        "x0": [c["point"][0] for c in closed],
+        "y0": [c["point"][1] for c in closed],
+        "block": [names.index(c["block_a"]) if c["block_a"] in names else -1 for c in closed],
+        "sn": [c["normal_force"] / c["length"] for c in closed],
+        "tau": [c["shear_force"] / c["length"] for c in closed],
+    }
+
+
 def _columns(results, of):
     from vdec_verify.extract import ExtractError
+    if of == "contacts":
+        return _contact_columns(results)
     table = results.get(of)
     if not isinstance(table, dict):
         raise ExtractError(f"the results have no '{of}' (a scene without deformable blocks has none)")
@@ -106,6 +124,10 @@ def _values(columns, of, quantity, theta):
         if quantity == "stt":
             return sxx * s * s + syy * c * c - 2.0 * sxy * s * c
         return (syy - sxx) * s * c + sxy * (c * c - s * s)
+    if of == "contacts":
+        if quantity not in CONTACT_QUANTITIES:
+            raise ExtractError(f"contacts have no quantity '{quantity}' (known: {', '.join(CONTACT_QUANTITIES)})")
+        return np.asarray(columns[quantity], dtype=float)
     if quantity not in GRIDPOINT_QUANTITIES:
         raise ExtractError(f"gridpoints have no quantity '{quantity}' (known: {', '.join(GRIDPOINT_QUANTITIES)})")
     ux = np.asarray(columns["displacement_x"], dtype=float)

@@ -275,8 +275,8 @@ def _extract_table(errors, table, where):
         if not (isinstance(w, list) and len(w) == 2 and all(_is_number(v) for v in w) and w[0] < w[1]):
             errors.add(f"{where}.window", f"{w!r} is not [t_start, t_end] with t_start < t_end")
     if kind_name in ("field", "field_mean", "field_peak", "field_extent"):
-        if table.get("of") not in ("zones", "gridpoints"):
-            errors.add(f"{where}.of", f"{table.get('of')!r} is not \"zones\" or \"gridpoints\"")
+        if table.get("of") not in ("zones", "gridpoints", "contacts"):
+            errors.add(f"{where}.of", f"{table.get('of')!r} is not \"zones\", \"gridpoints\" or \"contacts\"")
         for key in ("x", "y", "r", "angle", "centre"):
             if key in table and not (isinstance(table[key], list) and len(table[key]) == 2
                                      and all(_is_number(v) for v in table[key])):

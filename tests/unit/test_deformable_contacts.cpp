@@ -1,0 +1,344 @@
+// Contacts on deformable blocks: outline gridpoints as corners, forces shared along edges,
+// contact lengths that partition a joint between both sides, rigid-deformable contacts.
+#include <omp.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "contact/contact_geometry.hpp"
+#include "core/cycle.hpp"
+#include "core/errors.hpp"
+#include "requirements.hpp"
+#include "scene_fixture.hpp"
+
+using namespace vdec;
+using vdec::testing::sceneFromText;
+
+namespace {
+
+constexpr double kPressure = 1e5;  // Pa on the top of the stack
+constexpr double kJointStiffness = 1e10;  // Pa/m
+
+// An elastic rock (E = 10 GPa, nu = 0.25) and a Coulomb joint of stiffness kn = ks = k.
+std::string rockAndJoint(double k) {
+  return R"(
+[[block_material]]
+name = "rock"
+density = 2500.0
+young = 10e9
+poisson = 0.25
+[[joint_material]]
+name = "joint"
+kn = )" + std::to_string(k) + "\nks = " + std::to_string(k) + "\nfriction = 30.0\n";
+}
+
+// Two elastic 1 m x 1 m blocks, one on the other, zoned lowerNx x 2 and upperNx x 3; the bottom
+// on rollers (one gridpoint held in x), a pressure on top, the sides free. A bonded joint.
+std::string stackScene(int lowerNx, int upperNx, const std::string& extra = "") {
+  return R"(
+[model]
+rounding = 0.01
+[solver]
+adaptive_damping = true
+[stop]
+ratio = 1e-10
+cycles = 100000
+)" + rockAndJoint(kJointStiffness) + R"(cohesion = 1e6
+tension = 1e6
+[[block]]
+name = "lower"
+material = "rock"
+vertices = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+zoning = { nx = )" + std::to_string(lowerNx) + R"(, ny = 2 }
+[[block]]
+name = "upper"
+material = "rock"
+vertices = [[0.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]]
+zoning = { nx = )" + std::to_string(upperNx) + R"(, ny = 3 }
+[[boundary]]
+block = "lower"
+y = [0.0, 0.0]
+fix = ["y"]
+[[boundary]]
+block = "lower"
+x = [0.0, 0.0]
+y = [0.0, 0.0]
+fix = ["x"]
+[[boundary]]
+block = "upper"
+y = [2.0, 2.0]
+pressure = )" + std::to_string(kPressure) + "\n" + extra;
+}
+
+struct Relaxed {
+  Model model;
+  RunReport report;
+};
+
+Relaxed relax(const std::string& text, const std::string& name) {
+  Scene s = sceneFromText(text, name);
+  Cycle cycle(s.model, s.settings, {});
+  RunReport r = cycle.run();
+  return {s.model, r};
+}
+
+double contactNormalStress(const Model& m, const Contact& c) { return m.normalForce(c) / c.length; }
+
+}  // namespace
+
+TEST(DeformableContacts, JointedStackCarriesAUniformStressOnMatchingAndMismatchedZonings) {
+  VDEC_REQUIREMENTS("REQ-ZONE-014, REQ-ZONE-015");
+  // Uniform stress is exact for constant-strain triangles, and the joint passes it on only if
+  // the contact lengths partition the joint (no stretch carried twice, none left out) and the
+  // forces reach the gridpoints as a uniform traction would. What remains is geometric, of the
+  // order of the strains (1e-5): the tolerances are 2e-5 of the pressure.
+  for (const auto& [lowerNx, upperNx] : {std::pair{2, 2}, std::pair{4, 3}, std::pair{2, 5}}) {
+    SCOPED_TRACE("lower nx " + std::to_string(lowerNx) + ", upper nx " + std::to_string(upperNx));
+    const Relaxed run = relax(stackScene(lowerNx, upperNx), "stack");
+    const Model& m = run.model;
+    ASSERT_EQ(run.report.errorCode, 0) << run.report.error;
+    ASSERT_EQ(run.report.stopReason, "ratio");
+    for (int z = 0; z < m.zones.size(); ++z) {
+      EXPECT_NEAR(m.zones.syy[z], -kPressure, 2e-5 * kPressure) << "zone " << z;
+      EXPECT_NEAR(m.zones.sxx[z], 0.0, 2e-5 * kPressure) << "zone " << z;
+      EXPECT_NEAR(m.zones.sxy[z], 0.0, 2e-5 * kPressure) << "zone " << z;
+    }
+    double totalNormalForce = 0.0, totalLength = 0.0;
+    for (const Contact& c : m.contacts) {
+      EXPECT_FALSE(c.open);
+      EXPECT_NEAR(contactNormalStress(m, c), kPressure, 2e-5 * kPressure);
+      totalNormalForce += m.normalForce(c);
+      totalLength += c.length;
+    }
+    // The joint's length (1 m, stretched by the lateral strain nu (1 + nu) p / E = 3.1e-6) is
+    // shared out among the contacts of both sides exactly once.
+    EXPECT_NEAR(totalLength, 1.0, 1e-5);
+    EXPECT_NEAR(totalNormalForce, kPressure, 1e-5 * kPressure);
+    // Every gridpoint of the upper block's base lies p / kn below the lower block's face under
+    // it: the joint's closure.
+    const Gridpoints& g = m.gridpoints;
+    for (int i = 0; i < g.size(); ++i) {
+      if (m.blocks.name[g.block[i]] != "upper" || g.initialPosition[i].y != 1.0) continue;
+      double below = NAN;
+      for (int k = 0; k < g.size(); ++k)
+        if (m.blocks.name[g.block[k]] == "lower" && g.initialPosition[k].y == 1.0 &&
+            std::abs(g.initialPosition[k].x - g.initialPosition[i].x) < 1e-12)
+          below = g.position[k].y - g.initialPosition[k].y;
+      if (std::isnan(below)) continue;  // no lower gridpoint right under this one
+      const double closure = below - (g.position[i].y - g.initialPosition[i].y);
+      EXPECT_NEAR(closure, kPressure / kJointStiffness, 2e-5 * kPressure / kJointStiffness) << "gridpoint " << i;
+    }
+  }
+}
+
+TEST(DeformableContacts, RigidBlockRestsOnADeformableBase) {
+  VDEC_REQUIREMENTS("REQ-ZONE-014");
+  // A rigid 1 m x 0.5 m block (density 2500, g = 10) on the middle of a deformable 2 m x 1 m
+  // base zoned 5 x 2: the base's zones under it carry its weight, and its rounded corners and
+  // the base's gridpoints under it share the contact length.
+  const std::string scene = R"(
+[model]
+rounding = 0.01
+gravity = [0.0, -10.0]
+[solver]
+adaptive_damping = true
+[stop]
+ratio = 1e-9
+cycles = 200000
+)" + rockAndJoint(1e10) + R"(
+[[block]]
+name = "base"
+material = "rock"
+vertices = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]
+zoning = { nx = 5, ny = 2 }
+[[block]]
+name = "top"
+material = "rock"
+vertices = [[0.5, 1.0], [1.5, 1.0], [1.5, 1.5], [0.5, 1.5]]
+[[boundary]]
+block = "base"
+y = [0.0, 0.0]
+fix = ["x", "y"]
+)";
+  const Relaxed run = relax(scene, "rigid-on-deformable");
+  const Model& m = run.model;
+  ASSERT_EQ(run.report.errorCode, 0) << run.report.error;
+  ASSERT_EQ(run.report.stopReason, "ratio");
+  const double weight = 2500.0 * 0.5 * 10.0;
+  double normal = 0.0, length = 0.0;
+  int onBaseGridpoints = 0;
+  for (const Contact& c : m.contacts) {
+    normal += m.normalForce(c) * std::abs(contactGeometry(m, c).normal.y);
+    length += c.length;
+    onBaseGridpoints += m.vertices.gridpoint[c.corner] >= 0;
+  }
+  EXPECT_NEAR(normal, weight, 1e-6 * weight);
+  EXPECT_NEAR(length, 1.0, 1e-3);  // the block's face, 1 m, shared out once
+  EXPECT_EQ(onBaseGridpoints, 2);  // the base's gridpoints at x = 0.8 and 1.2 (and the top's 2 corners)
+  EXPECT_EQ(m.contacts.size(), 4u);
+  // Equilibrium of the base: its zones' mean vertical stress over the bottom row times the
+  // width carries the block's weight plus the upper half of the base's own.
+  double forceOnBottom = 0.0, area = 0.0;
+  for (int z = 0; z < m.zones.size(); ++z) {
+    const auto& n = m.zones.gridpoint[z];
+    const Vec2 centre = (1.0 / 3.0) * (m.gridpoints.initialPosition[n[0]] + m.gridpoints.initialPosition[n[1]] +
+                                       m.gridpoints.initialPosition[n[2]]);
+    if (centre.y > 0.5) continue;
+    const Vec2 p0 = m.gridpoints.position[n[0]], p1 = m.gridpoints.position[n[1]], p2 = m.gridpoints.position[n[2]];
+    const double a = 0.5 * cross(p1 - p0, p2 - p0);
+    forceOnBottom += m.zones.syy[z] * a;
+    area += a;
+  }
+  // Mean syy over the bottom half times the width equals minus the load at mid-height of
+  // that half: the block's weight and the base's weight above y = 0.25.
+  const double expected = -(weight + 2500.0 * 10.0 * 2.0 * 0.75);
+  EXPECT_NEAR(forceOnBottom / area * 2.0, expected, 1e-3 * std::abs(expected));
+}
+
+TEST(DeformableContacts, ResultsAreBitwiseTheSameOnOneAndTwoThreads) {
+  VDEC_REQUIREMENTS("REQ-ZONE-004, REQ-ZONE-014");
+  auto runWith = [](int threads) {
+    omp_set_num_threads(threads);
+    Scene s = sceneFromText(stackScene(24, 32), "stack-threads");
+    s.settings.stop = {};
+    s.settings.stop.cycles = 400;
+    Cycle cycle(s.model, s.settings, {});
+    const RunReport r = cycle.run();
+    EXPECT_EQ(r.errorCode, 0) << r.error;
+    return s.model;
+  };
+  const Model one = runWith(1), two = runWith(2);
+  omp_set_num_threads(omp_get_num_procs());
+  ASSERT_EQ(one.contacts.size(), two.contacts.size());
+  for (int i = 0; i < one.gridpoints.size(); ++i) {
+    EXPECT_EQ(one.gridpoints.position[i].x, two.gridpoints.position[i].x);
+    EXPECT_EQ(one.gridpoints.position[i].y, two.gridpoints.position[i].y);
+  }
+  for (std::size_t c = 0; c < one.contacts.size(); ++c) EXPECT_EQ(one.contacts[c].normalStress, two.contacts[c].normalStress);
+}
+
+TEST(DeformableContacts, SlidingAcrossMismatchedGridpointsKeepsTheFrictionalStrength) {
+  VDEC_REQUIREMENTS("REQ-ZONE-014");
+  // The upper block of the stack pushed along the joint (friction 30 degrees, no cohesion) by a
+  // velocity on its left side: its gridpoints pass over the lower block's and contacts move from
+  // edge to edge; at the end every contact slips with its shear force at tan(30) times its
+  // normal force, and the energy account closes.
+  const std::string scene = stackScene(4, 3, R"(
+[[boundary]]
+block = "upper"
+x = [0.0, 0.0]
+velocity_x = 0.05
+)");
+  std::string frictional = scene;
+  frictional.replace(frictional.find("cohesion = 1e6\ntension = 1e6\n"), 28, "");
+  Scene s = sceneFromText(frictional, "stack-slide");
+  s.settings.stop = {};
+  s.settings.stop.time = 4.0;  // 0.2 m of slip: most of a zone of either block
+  Cycle cycle(s.model, s.settings, {});
+  const RunReport r = cycle.run();
+  ASSERT_EQ(r.errorCode, 0) << r.error;
+  const Model& m = s.model;
+  double normal = 0.0;
+  int closed = 0;
+  for (const Contact& c : m.contacts) {
+    if (c.open) continue;
+    ++closed;
+    normal += m.normalForce(c);
+    EXPECT_TRUE(c.slipping);
+    EXPECT_NEAR(std::abs(m.shearForce(c)), std::tan(std::numbers::pi / 6) * m.normalForce(c), 1e-9 * m.normalForce(c));
+  }
+  EXPECT_GE(closed, 6);
+  // The pressure came on suddenly and the slide keeps adaptive damping low, so the upper block
+  // still bounces a little on the joint: its total normal force is the pressure within 5 %.
+  EXPECT_NEAR(normal, kPressure, 0.05 * kPressure);
+  EXPECT_GT(r.energy.slipDissipation, 0.0);
+  EXPECT_LT(r.energy.largestExcess, 0.05);
+}
+
+TEST(DeformableContacts, OutlinesTooShortForTheRoundingOrTouchingThemselvesAreErrors) {
+  VDEC_REQUIREMENTS("REQ-ZONE-005, REQ-ZONE-014");
+  // Outline segments of 0.5 m from each block corner: a rounding of 0.6 m does not fit.
+  std::string narrow = stackScene(2, 2);
+  narrow.replace(narrow.find("rounding = 0.01"), 15, "rounding = 0.6");
+  try {
+    sceneFromText(narrow, "stack-rounding");
+    FAIL() << "a rounding longer than the outline's segments was accepted";
+  } catch (const GeometryError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("block 'lower'"), std::string::npos) << what;
+    EXPECT_NE(what.find("too short for the rounding"), std::string::npos) << what;
+  }
+  // An excavation leaving two zones of one block that meet only at a gridpoint.
+  const std::string pinched = stackScene(2, 2, R"(
+[[excavation]]
+polygon = [[0.5, 0.0], [1.01, 0.0], [1.01, 0.5], [0.5, 0.5]]
+[[excavation]]
+polygon = [[-0.01, 0.5], [0.5, 0.5], [0.5, 1.01], [-0.01, 1.01]]
+)");
+  try {
+    sceneFromText(pinched, "stack-pinched");
+    FAIL() << "an outline touching itself was accepted";
+  } catch (const GeometryError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("block 'lower': its outline touches itself at the gridpoint at (0.5, 0.5)"), std::string::npos)
+        << what;
+  }
+}
+
+TEST(DeformableContacts, JointedKirschApproachesTheIntactPlateAsTheJointStiffens) {
+  VDEC_REQUIREMENTS("REQ-ZONE-015");
+  // DB-KIRSCH-JOINTED (the Kirsch plate of DB-KIRSCH cut along 45 degrees by a bonded joint,
+  // zoned alike on both sides) against DB-KIRSCH itself: at every gridpoint the displacement
+  // differs from the intact plate's only by what the joint's compliance adds, about
+  // (E / kn) / a of the displacement (1e-3 at kn = 1e13, where E / kn = 1 mm): ten times the
+  // stiffness, a tenth of the difference.
+  const std::string problems = std::string(VDEC_PROBLEMS_DIR) + "/";
+  auto relaxed = [&](const std::string& problem, const std::vector<std::string>& overrides) {
+    Scene s = readScene(problems + problem + "/scene.toml", overrides);
+    s.settings.stop = {};
+    s.settings.stop.ratio = 1e-6;
+    s.settings.stop.cycles = 200000;
+    Cycle cycle(s.model, s.settings, {});
+    const RunReport r = cycle.run();
+    EXPECT_EQ(r.stopReason, "ratio") << problem << ": " << r.error;
+    return s.model;
+  };
+  const Model intact = relaxed("DB-KIRSCH", {});
+  auto largestDifference = [&](const Model& jointed) {
+    double largest = 0.0, scale = 0.0;
+    const Gridpoints& gi = intact.gridpoints;
+    const Gridpoints& gj = jointed.gridpoints;
+    for (int i = 0; i < gi.size(); ++i) scale = std::max(scale, norm(gi.position[i] - gi.initialPosition[i]));
+    int matched = 0;
+    for (int k = 0; k < gj.size(); ++k) {
+      for (int i = 0; i < gi.size(); ++i) {
+        if (norm(gi.initialPosition[i] - gj.initialPosition[k]) > 1e-9) continue;
+        largest = std::max(largest, norm((gj.position[k] - gj.initialPosition[k]) - (gi.position[i] - gi.initialPosition[i])));
+        ++matched;
+      }
+    }
+    EXPECT_EQ(matched, gj.size());  // the same zoning: every gridpoint of the jointed plate has its twin
+    return largest / scale;
+  };
+  const double stiff = largestDifference(relaxed("DB-KIRSCH-JOINTED", {}));
+  const double softer = largestDifference(relaxed("DB-KIRSCH-JOINTED", {"joint_material[0].kn=1e12", "joint_material[0].ks=1e12"}));
+  EXPECT_LT(stiff, 1e-3);
+  EXPECT_NEAR(softer / stiff, 10.0, 1.5);
+}
+
+TEST(DeformableContacts, TheDirectSolveRefusesJointedScenes) {
+  VDEC_REQUIREMENTS("REQ-ZONE-009, REQ-ZONE-014");
+  // The direct solve assembles zones, not joints: on a jointed scene it would solve each block
+  // alone, so it must refuse rather than start the cycles from a wrong state.
+  std::string text = stackScene(2, 2);
+  text.replace(text.find("adaptive_damping = true"), 23, "adaptive_damping = true\nstatic_solve = true");
+  Scene s = sceneFromText(text, "stack-direct");
+  try {
+    Cycle cycle(s.model, s.settings, {});
+    FAIL() << "a static solve of a jointed scene was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("solver.static_solve: the direct solve assembles the zones of one block and not "
+                                         "the joints between blocks"), std::string::npos)
+        << e.what();
+  }
+}
