@@ -28,6 +28,28 @@ def test_biaxial_peak_stress_known_values():
         pytest.approx(-6.464101615e6, rel=1e-9)
 
 
+@pytest.mark.requirements("REQ-QA-003", "REQ-MC-005")
+def test_single_plane_of_weakness_known_values():
+    rock = dict(cohesion=1e6, friction_deg=30.0, joint_friction_deg=30.0)
+    # No confinement, c_w = 0.2 MPa, phi_w = 30 deg: at beta = 60 deg the plane slips at
+    # 2 c_w / ((1 - 1/3) sin 120) = 0.4 MPa / 0.57735 = 0.69282 MPa.
+    assert pl.single_plane_of_weakness_peak_stress(confining_pressure=0.0, joint_cohesion=0.2e6, joint_angle_deg=60.0,
+                                                   **rock) == pytest.approx(-0.4e6 / (2.0 / 3.0 * math.sin(math.radians(120.0))), rel=1e-12)
+    # At beta = 45 deg: 0.4 MPa / (1 - tan 30) = 0.94641 MPa.
+    assert pl.single_plane_of_weakness_peak_stress(confining_pressure=0.0, joint_cohesion=0.2e6, joint_angle_deg=45.0,
+                                                   **rock) == pytest.approx(-0.4e6 / (1.0 - math.tan(math.radians(30.0))), rel=1e-12)
+    # Cohesionless plane under 1 MPa, beta = 45 + phi_w / 2 = 60 deg: the minimum, sigma1 = N_phi_w sigma3 = 3 MPa.
+    assert pl.single_plane_of_weakness_peak_stress(confining_pressure=1e6, joint_cohesion=0.0, joint_angle_deg=60.0,
+                                                   **rock) == pytest.approx(-3e6, rel=1e-12)
+    # beta <= phi_w or beta = 90 deg: the plane cannot slip and the rock fails, 2 c sqrt(3) unconfined.
+    for beta in (20.0, 30.0, 90.0):
+        assert pl.single_plane_of_weakness_peak_stress(confining_pressure=0.0, joint_cohesion=0.2e6, joint_angle_deg=beta,
+                                                       **rock) == pytest.approx(-2e6 * math.sqrt(3.0), rel=1e-12)
+    # A strong plane (c_w = 5 MPa) at 60 deg: the rock is weaker.
+    assert pl.single_plane_of_weakness_peak_stress(confining_pressure=0.0, joint_cohesion=5e6, joint_angle_deg=60.0,
+                                                   **rock) == pytest.approx(-2e6 * math.sqrt(3.0), rel=1e-12)
+
+
 # The FLAC verification case "Cylindrical hole in an infinite Mohr-Coulomb medium": a = 1 m,
 # p0 = 30 MPa, c = 3.45 MPa, phi = 30 deg, K = 3.9 GPa, G = 2.8 GPa, so
 # E = 9 K G / (3 K + G) = 6.7779 GPa and nu = (3 K - 2 G) / (2 (3 K + G)) = 61/290 = 0.21034.

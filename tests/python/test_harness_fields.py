@@ -121,3 +121,20 @@ def test_field_extent_is_the_reach_of_the_nonzero_samples():
     with pytest.raises(ExtractError, match="nonzero plastic"):
         extract({"kind": "field_extent", "of": "zones", "quantity": "plastic"},
                 {**RESULTS, "zones": {**RESULTS["zones"], "plastic_state": [0, 0, 0]}}, 0)
+
+
+@REQ
+def test_contact_stresses_are_forces_over_lengths_of_the_closed_contacts():
+    results = dict(RESULTS, blocks=[{"name": "plate"}, {"name": "lid"}], contacts=[
+        {"block_a": "lid", "point": [1.0, 1.0], "normal_force": 2.0e3, "shear_force": -0.5e3, "length": 0.5, "open": False},
+        {"block_a": "plate", "point": [2.0, 2.0], "normal_force": 3.0e3, "shear_force": 1.0e3, "length": 1.5, "open": False},
+        {"block_a": "plate", "point": [3.0, 3.0], "normal_force": 0.0, "shear_force": 0.0, "length": 1.0, "open": True},
+    ])
+    sn = extract({"kind": "field", "of": "contacts", "quantity": "sn", "centre": [0.0, 0.0]}, results, 0)
+    assert list(sn.x) == [1.0, 2.0]  # the open contact left out
+    assert sn.coordinates["r"] == pytest.approx([math.sqrt(2.0), 2.0 * math.sqrt(2.0)])
+    assert sn.y == pytest.approx([4.0e3, 2.0e3])
+    tau = extract({"kind": "field_mean", "of": "contacts", "quantity": "tau", "block": "plate"}, results, 0)
+    assert tau == pytest.approx(1.0e3 / 1.5)
+    with pytest.raises(ExtractError, match="contacts have no quantity 'sxx'"):
+        extract({"kind": "field", "of": "contacts", "quantity": "sxx"}, results, 0)

@@ -342,3 +342,40 @@ TEST(DeformableContacts, TheDirectSolveRefusesJointedScenes) {
         << e.what();
   }
 }
+
+TEST(DeformableContacts, TheTimeStepIncludesTheJointsStiffness) {
+  VDEC_REQUIREMENTS("REQ-MC-006, REQ-ZONE-014");
+  // 1.3-26: an outline gridpoint's stiffness gains max(kn, ks) times its two outline segments,
+  // so a joint 1000 times stiffer than the rock over a zone shortens the step; interior
+  // gridpoints keep their zones' stiffness.
+  auto prepared = [](const std::string& kn) {
+    std::string text = stackScene(2, 2);
+    for (const std::string key : {"kn = ", "ks = "}) {
+      const std::size_t at = text.find(key);
+      text.replace(at, text.find('\n', at) - at, key + kn);
+    }
+    Scene s = sceneFromText(text, "stack-step-" + kn);
+    Cycle cycle(s.model, s.settings, {});
+    return std::make_pair(s.model, cycle.timeStep());
+  };
+  const auto [soft, softStep] = prepared("1e3");
+  const auto [stiff, stiffStep] = prepared("1e13");
+  const Vertices& vx = stiff.vertices;
+  std::vector<char> outline(stiff.gridpoints.size(), 0);
+  for (int v = 0; v < vx.size(); ++v) {
+    const int g = vx.gridpoint[v];
+    outline[g] = 1;
+    const double segments = vx.geometry[v].edgeLength + vx.geometry[vx.prev[v]].edgeLength;
+    EXPECT_NEAR(stiff.gridpoints.stiffness[g] - soft.gridpoints.stiffness[g], (1e13 - 1e3) * segments, 1e-9 * 1e13 * segments);
+  }
+  for (int g = 0; g < stiff.gridpoints.size(); ++g) {
+    if (!outline[g]) {
+      EXPECT_EQ(stiff.gridpoints.stiffness[g], soft.gridpoints.stiffness[g]);
+    }
+  }
+  double expected = INFINITY;
+  for (int g = 0; g < stiff.gridpoints.size(); ++g)
+    expected = std::min(expected, 2.0 * std::sqrt(stiff.gridpoints.mass[g] / stiff.gridpoints.stiffness[g]));
+  EXPECT_DOUBLE_EQ(stiffStep, expected);  // 1.3-25 with the joints' term
+  EXPECT_LT(stiffStep, 0.2 * softStep);
+}

@@ -30,6 +30,33 @@ def biaxial_peak_stress(*, confining_pressure, cohesion, friction_deg):
     return -np.asarray(confining_pressure, dtype=float) * n - 2.0 * np.asarray(cohesion, dtype=float) * np.sqrt(n)
 
 
+def single_plane_of_weakness_peak_stress(*, confining_pressure, cohesion, friction_deg, joint_cohesion,
+                                        joint_friction_deg, joint_angle_deg):
+    """The axial stress (tension positive) at which a sample cut by one plane of weakness fails
+    under the lateral pressure `confining_pressure` (compression positive): the weaker of slip
+    on the plane and failure of the intact rock. With compression positive, sigma3 = p and beta
+    the angle between the plane's normal and the axial (major) stress, i.e. the plane's dip from
+    the lateral direction, the plane slips when (Jaeger 1960; Jaeger, Cook and Zimmerman,
+    Fundamentals of Rock Mechanics, 4th ed., section 4.8)
+
+        sigma1 = sigma3 + 2 (c_w + sigma3 tan phi_w) / ((1 - tan phi_w cot beta) sin 2 beta),
+
+    which needs phi_w < beta < 90 degrees (elsewhere the plane cannot slip whatever the load);
+    the intact rock fails at sigma1 = sigma3 N_phi + 2 c sqrt(N_phi) (biaxial_peak_stress).
+    """
+    beta = math.radians(float(joint_angle_deg))
+    phi_w = math.radians(float(joint_friction_deg))
+    if not 0.0 < phi_w < math.pi / 2:
+        raise ValueError(f"joint friction {joint_friction_deg} degrees must lie in (0, 90)")
+    p = float(confining_pressure)
+    rock = -float(biaxial_peak_stress(confining_pressure=p, cohesion=cohesion, friction_deg=friction_deg))
+    if not phi_w < beta < math.pi / 2:
+        return -rock
+    slip = p + 2.0 * (float(joint_cohesion) + p * math.tan(phi_w)) / (
+        (1.0 - math.tan(phi_w) / math.tan(beta)) * math.sin(2.0 * beta))
+    return -min(slip, rock)
+
+
 def plastic_strain_rate_ratio(*, dilation_deg):
     """d e3_p / d e1_p = -N_psi for Mohr-Coulomb flow on the face of s1 and s3, with the plastic
     potential g = s1 - s3 N_psi (non-associated when psi < phi): the minor principal direction
