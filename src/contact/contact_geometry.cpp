@@ -135,22 +135,27 @@ void placeBlockVertices(Model& m, int b) {
 FeatureHit nearestFeature(const Model& m, int corner, int blockB) {
   const Vec2 centre = m.vertices.geometry[corner].arcCentre;
   const double radius = m.vertices.geometry[corner].arcRadius;
-  // Outside B exactly one feature's region holds the centre; inside (a sharp corner pressed in
-  // further than its arc radius) several may, and the one with least overlap is the nearest.
-  // A centre deep inside B may lie in no feature's region; then the nearest edge line serves.
-  // A centre on the boundary between an edge's region and a corner's (two blocks' corners
-  // meeting exactly) belongs to the corner: that is what lets contact detection see the two
-  // corners as one corner-corner contact rather than two corner-edge contacts on one spot.
+  // The feature whose surface is nearest the centre, among those whose region holds it: outside
+  // a convex block only one region does, but inside it (a sharp corner pressed in further than
+  // its arc radius) several may, and outside a non-convex outline (a deformable block's notch or
+  // hole) so may the wedge of a corner on the far side, at a large gap. The distance of the
+  // centre from a feature's surface is radius - overlap (negative inside). A centre deep inside
+  // B may lie in no feature's region; then the nearest edge line serves. A centre on the
+  // boundary between an edge's region and a corner's (two blocks' corners meeting exactly)
+  // belongs to the corner: that is what lets contact detection see the two corners as one
+  // corner-corner contact rather than two corner-edge contacts on one spot.
   const double tie = 1e-9 * m.roundingLength;
   FeatureHit best, nearestEdge;
+  double bestDistance = INFINITY;
   bool found = false, edgeFound = false;
   for (int f = 0; f < 2 * m.blocks.vertexCount[blockB]; ++f) {
     const Evaluation e = evaluate(m, blockB, f, centre, radius);
-    const bool nearer = !found || e.hit.overlap < best.overlap - tie ||
-                        (e.hit.kind == FeatureKind::Corner && best.kind == FeatureKind::Edge &&
-                         e.hit.overlap <= best.overlap + tie);
+    const double distance = std::abs(radius - e.hit.overlap);
+    const bool nearer = !found || distance < bestDistance - tie ||
+                        (e.hit.kind == FeatureKind::Corner && best.kind == FeatureKind::Edge && distance <= bestDistance + tie);
     if (e.step == 0 && nearer) {
       best = e.hit;
+      bestDistance = distance;
       found = true;
     }
     if (f % 2 == 1 && (!edgeFound || e.hit.overlap < nearestEdge.overlap)) {
@@ -194,7 +199,13 @@ double contactLength(const Model& m, int corner, const FeatureHit& hit) {
       const int e = edgesOfB[k];
       const Vec2 origin = vx.geometry[e].position, along = vx.geometry[e].edgeDirection, out = outward(along);
       const double sHere = dot(here - origin, along), sFar = dot(far - origin, along);
-      if (sHere == sFar) continue;
+      // Faces in contact run against each other (both outlines are counter-clockwise): an edge
+      // of A that runs with B's edge, or at more than 60 degrees against it, faces no part of
+      // it. (Without this, a side of A in line with a side of B, as at the corners of a stack,
+      // would count the overlap of the two by the joint's closure; a nearly perpendicular edge,
+      // a projection whose clipping is round-off.)
+      const Vec2 alongA = vx.geometry[other == after ? corner : before].edgeDirection;
+      if (dot(alongA, along) > -0.5) continue;
       const double perUnitAlong = 1.0 / (sFar - sHere);
       // A's edge from `here` to `far`, clipped to B's edge; it shares the face when its clipped
       // far end is within the contact tolerance of B's edge line.
@@ -206,7 +217,11 @@ double contactLength(const Model& m, int corner, const FeatureHit& hit) {
     }
     length += share;
   }
-  return std::max(length, m.roundingLength);
+  // A corner touching alone shares no face: it gets the rounding length, so that its stiffness
+  // never vanishes. On a deformable block's outline a shared face can be shorter than d (zones
+  // finer than the rounding), and there the share is the partition of the joint and stands.
+  const bool outline = m.vertices.gridpoint[corner] >= 0 || m.vertices.gridpoint[hit.feature] >= 0;
+  return outline && length > 0.0 ? length : std::max(length, m.roundingLength);
 }
 
 }  // namespace vdec

@@ -12,8 +12,7 @@ namespace vdec {
 
 namespace {
 
-// The loops of a block's boundary edges (each directed with the block on its left); the outer
-// loop is the one of largest signed area.
+// The outer loop of a block's boundary edges (each directed with the block on its left).
 std::vector<int> outerLoop(const Model& m, int block) {
   std::map<int, int> nextOf;
   for (const Model::BoundaryEdge& e : m.boundaryEdges) {
@@ -27,8 +26,9 @@ std::vector<int> outerLoop(const Model& m, int block) {
       throw GeometryError(s.str());
     }
   }
-  std::vector<int> best;
-  double bestArea = 0.0;
+  // Each loop with positive area is a piece of the block's outline; holes run clockwise.
+  std::vector<int> outer;
+  int pieces = 0;
   std::map<int, char> visited;
   for (const auto& [start, ignored] : nextOf) {
     if (visited[start]) continue;
@@ -39,12 +39,15 @@ std::vector<int> outerLoop(const Model& m, int block) {
       loop.push_back(g);
       area += 0.5 * cross(m.gridpoints.initialPosition[g], m.gridpoints.initialPosition[nextOf.at(g)]);
     }
-    if (area > bestArea) {
-      bestArea = area;
-      best = std::move(loop);
-    }
+    if (area <= 0.0) continue;
+    ++pieces;
+    outer = std::move(loop);
   }
-  return best;
+  if (pieces != 1)
+    throw GeometryError("block '" + m.blocks.name[block] + "' is in " + std::to_string(pieces) + " pieces (an "
+                        "excavation cut it apart): contacts need each deformable block in one piece; give the "
+                        "pieces as blocks of their own, or change the excavation");
+  return outer;
 }
 
 // The interior angle (radians) of a counter-clockwise outline at `here`.

@@ -15,8 +15,8 @@ inline constexpr double kRoundedCornerMaxAngleDegrees = 160.0;
 // Rebuilds model.vertices so that each deformable block has its outer outline as its vertices
 // (block order and each rigid block's vertices unchanged), and sizes the gridpoints' contact
 // forces. Holes in a deformable block carry no contacts. Throws GeometryError naming the block
-// when the outline touches itself at a gridpoint, or when an outline segment is too short for
-// the rounding of the corners at its ends.
+// when the outline touches itself at a gridpoint, when the block is in several pieces, or when
+// an outline segment is too short for the rounding of the corners at its ends.
 void attachDeformableOutlines(Model& model);
 
 // World geometry of a deformable block's vertices from its gridpoints' present positions.

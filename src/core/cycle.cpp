@@ -130,12 +130,7 @@ void Cycle::buildStages() {
   // Only the stages the scene needs: a single deformable block has no contacts, a scene of
   // rigid blocks no zones.
   if (hasContacts_) {
-    std::vector<int> outlined;
-    for (int b = 0; b < model_.blocks.size(); ++b)
-      if (model_.blocks.deformable[b]) outlined.push_back(b);
-    stages_.push_back({"contact-detection", [this, outlined] {
-                         // Deformable blocks' outlines follow their gridpoints' last motion.
-                         for (const int b : outlined) placeOutlineVertices(model_, b);
+    stages_.push_back({"contact-detection", [this] {
                          if (model_.cycle > 0) detection_.update(model_, largestStepDisplacement_);
                          motionClock_ += largestStepDisplacement_;
                        }});
@@ -171,8 +166,14 @@ void Cycle::buildStages() {
                        }});
   }
   if (hasZones_) {
-    stages_.push_back({"gridpoint-motion", [this] {
+    // Deformable blocks' outlines follow their gridpoints at once, so that the next step's
+    // contacts and this step's outputs see the positions just reached.
+    std::vector<int> outlined;
+    for (int b = 0; hasContacts_ && b < model_.blocks.size(); ++b)
+      if (model_.blocks.deformable[b]) outlined.push_back(b);
+    stages_.push_back({"gridpoint-motion", [this, outlined] {
                          step_.merge(integrateGridpoints(model_, dt_, alpha_));
+                         for (const int b : outlined) placeOutlineVertices(model_, b);
                        }});
   }
   stages_.push_back({"end-of-step", [this] { finishStep(); }, 0.0, false});

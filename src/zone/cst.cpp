@@ -57,7 +57,9 @@ void prepareZones(Model& m) {
     }
   }
   // 1.3-26: a gridpoint on an outline that can touch another block also carries the joints'
-  // stiffness, the larger of kn and ks times the two outline segments at it.
+  // stiffness, the larger of kn and ks times the two outline segments at it, and at least 2 d:
+  // a corner touching alone has the contact length d, and another contact can act on the
+  // gridpoint through its edge.
   if (!g.contactForce.empty()) {
     double perLength = 0.0, point = 0.0;  // Pa/m of the joint laws; N/m of the point-contact law
     for (const JointMaterial& j : m.jointMaterials)
@@ -67,7 +69,8 @@ void prepareZones(Model& m) {
     for (int v = 0; v < vx.size(); ++v)
       if (vx.gridpoint[v] >= 0)
         g.stiffness[vx.gridpoint[v]] +=
-            point + perLength * (vx.geometry[v].edgeLength + vx.geometry[vx.prev[v]].edgeLength);
+            point + perLength * std::max(vx.geometry[v].edgeLength + vx.geometry[vx.prev[v]].edgeLength,
+                                         2.0 * m.roundingLength);
   }
   g.mass = g.gravityMass;
   // Gridpoint -> (zone, corner) slots, in zone order: the gather order is fixed.
