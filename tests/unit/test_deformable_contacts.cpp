@@ -70,6 +70,35 @@ y = [2.0, 2.0]
 pressure = )" + std::to_string(kPressure) + "\n" + extra;
 }
 
+// A 2 m x 1 m deformable base zoned nx x 2 under a rigid block of the given corners, with
+// gravity; `excavation` may remove zones of the base.
+std::string blockOnZonedBase(int nx, const std::string& topVertices, const std::string& excavation = "") {
+  return R"(
+[model]
+rounding = 0.01
+gravity = [0.0, -10.0]
+[solver]
+adaptive_damping = true
+[stop]
+ratio = 1e-9
+cycles = 200000
+)" + rockAndJoint(1e10) + R"(
+[[block]]
+name = "base"
+material = "rock"
+vertices = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]
+zoning = { nx = )" + std::to_string(nx) + R"(, ny = 2 }
+[[block]]
+name = "top"
+material = "rock"
+vertices = )" + topVertices + R"(
+[[boundary]]
+block = "base"
+y = [0.0, 0.0]
+fix = ["x", "y"]
+)" + excavation;
+}
+
 struct Relaxed {
   Model model;
   RunReport report;
@@ -136,31 +165,7 @@ TEST(DeformableContacts, RigidBlockRestsOnADeformableBase) {
   // A rigid 1 m x 0.5 m block (density 2500, g = 10) on the middle of a deformable 2 m x 1 m
   // base zoned 5 x 2: the base's zones under it carry its weight, and its rounded corners and
   // the base's gridpoints under it share the contact length.
-  const std::string scene = R"(
-[model]
-rounding = 0.01
-gravity = [0.0, -10.0]
-[solver]
-adaptive_damping = true
-[stop]
-ratio = 1e-9
-cycles = 200000
-)" + rockAndJoint(1e10) + R"(
-[[block]]
-name = "base"
-material = "rock"
-vertices = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]
-zoning = { nx = 5, ny = 2 }
-[[block]]
-name = "top"
-material = "rock"
-vertices = [[0.5, 1.0], [1.5, 1.0], [1.5, 1.5], [0.5, 1.5]]
-[[boundary]]
-block = "base"
-y = [0.0, 0.0]
-fix = ["x", "y"]
-)";
-  const Relaxed run = relax(scene, "rigid-on-deformable");
+  const Relaxed run = relax(blockOnZonedBase(5, "[[0.5, 1.0], [1.5, 1.0], [1.5, 1.5], [0.5, 1.5]]"), "rigid-on-deformable");
   const Model& m = run.model;
   ASSERT_EQ(run.report.errorCode, 0) << run.report.error;
   ASSERT_EQ(run.report.stopReason, "ratio");
@@ -380,38 +385,8 @@ TEST(DeformableContacts, TheTimeStepIncludesTheJointsStiffness) {
   EXPECT_LT(stiffStep, 0.2 * softStep);
 }
 
-namespace {
-
-// A 2 m x 1 m deformable base zoned 4 x 2 and a rigid 0.3 m block resting on it at
-// x = 0.1 to 0.4, under gravity; `excavation` removes zones of the base.
-std::string blockOnZonedBase(const std::string& excavation) {
-  return R"(
-[model]
-rounding = 0.01
-gravity = [0.0, -10.0]
-[solver]
-adaptive_damping = true
-[stop]
-ratio = 1e-8
-cycles = 200000
-)" + rockAndJoint(1e10) + R"(
-[[block]]
-name = "base"
-material = "rock"
-vertices = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]
-zoning = { nx = 4, ny = 2 }
-[[block]]
-name = "top"
-material = "rock"
-vertices = [[0.1, 1.0], [0.4, 1.0], [0.4, 1.3], [0.1, 1.3]]
-[[boundary]]
-block = "base"
-y = [0.0, 0.0]
-fix = ["x", "y"]
-)" + excavation;
-}
-
-}  // namespace
+// A rigid 0.3 m block on the base's left end, x = 0.1 to 0.4.
+const std::string kSmallTop = "[[0.1, 1.0], [0.4, 1.0], [0.4, 1.3], [0.1, 1.3]]";
 
 TEST(DeformableContacts, ABlockRestsBesideANotchInADeformableOutline) {
   VDEC_REQUIREMENTS("REQ-ZONE-014");
@@ -419,7 +394,7 @@ TEST(DeformableContacts, ABlockRestsBesideANotchInADeformableOutline) {
   // wedge of the notch's far corner also holds points above the near face. A new contact must
   // take the feature nearest the corner, not the one of least overlap (which for a convex
   // block is the same): the block rests on the left column, carried by two contacts.
-  const Relaxed run = relax(blockOnZonedBase("[[excavation]]\npolygon = [[0.5, 0.5], [1.0, 0.5], [1.0, 1.01], [0.5, 1.01]]\n"),
+  const Relaxed run = relax(blockOnZonedBase(4, kSmallTop, "[[excavation]]\npolygon = [[0.5, 0.5], [1.0, 0.5], [1.0, 1.01], [0.5, 1.01]]\n"),
                             "notched-base");
   ASSERT_EQ(run.report.errorCode, 0) << run.report.error;
   EXPECT_EQ(run.report.stopReason, "ratio");
@@ -437,7 +412,7 @@ TEST(DeformableContacts, ADeformableBlockCutInTwoIsAnError) {
   // An excavation through the whole height of the base leaves two pieces; contacts on the
   // smaller would be lost, so the scene is refused naming the block.
   try {
-    sceneFromText(blockOnZonedBase("[[excavation]]\npolygon = [[0.5, -0.01], [1.0, -0.01], [1.0, 1.01], [0.5, 1.01]]\n"),
+    sceneFromText(blockOnZonedBase(4, kSmallTop, "[[excavation]]\npolygon = [[0.5, -0.01], [1.0, -0.01], [1.0, 1.01], [0.5, 1.01]]\n"),
                   "split-base");
     FAIL() << "a deformable block in two pieces was accepted";
   } catch (const GeometryError& e) {
