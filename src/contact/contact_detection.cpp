@@ -176,7 +176,7 @@ void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
     c.overlap = f.hit.overlap;
     c.joint = m.jointMaterialFor(c.blockA, c.blockB);
     const JointMaterial& j = m.jointMaterials[c.joint];
-    c.length = contactLength(m, c.corner, f.hit);
+    c.length = contactLength(m, c.corner, f.hit, m.blocks.deformable[c.blockA] || m.blocks.deformable[c.blockB]);
     c.elasticNormalStress = j.law == JointLaw::ContinuouslyYielding ? cyNormalStressOfClosure(j, c.overlap)
                                                                      : j.kn * c.overlap;
     c.open = c.overlap < 0.0;

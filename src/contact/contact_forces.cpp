@@ -161,7 +161,7 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
                             ? updateContinuouslyYielding(j, c, m.yieldingStates[i], dun, dus)
                             : updateJointStresses(j, c, dun, dus);
     // The length matters only while the contact carries stress.
-    if (!c.open) c.length = contactLength(m, c.corner, hit);
+    if (!c.open) c.length = contactLength(m, c.corner, hit, outlines);
     const double weight = contactWeight(j, c);
     const double fn = weight * c.normalStress, fs = weight * c.shearStress;
     totals.slipDissipation += weightBefore * slip;

@@ -18,10 +18,12 @@ struct Evaluation {
   FeatureHit hit;
 };
 
+// Outline: B is a deformable block, whose outline has point corners. A template parameter, so
+// that the rigid blocks' walk, the hot loop of the contact stage, stays as small as it was.
+template <bool Outline>
 Evaluation evaluate(const Model& m, int blockB, int localFeature, Vec2 centre, double radius) {
   const Vertices& vx = m.vertices;
   const int v = m.blocks.firstVertex[blockB] + localFeature / 2;
-  const bool outline = m.blocks.deformable[blockB];
   Evaluation out;
   if (localFeature % 2 == 1) {
     const Vec2 a = vx.geometry[v].position, e = vx.geometry[v].edgeDirection;
@@ -31,7 +33,7 @@ Evaluation evaluate(const Model& m, int blockB, int localFeature, Vec2 centre, d
     // Regions overlap by a sliver of round-off so that a centre exactly on a boundary (blocks
     // meeting at a grid point) belongs to both neighbours, never to neither.
     const double slack = 1e-9 * d;
-    if (!outline) {
+    if constexpr (!Outline) {
       if (s < d - slack) out.step = -1;
       else if (s > vx.geometry[v].edgeLength - d + slack) out.step = +1;
     } else {
@@ -50,7 +52,7 @@ Evaluation evaluate(const Model& m, int blockB, int localFeature, Vec2 centre, d
     out.hit = {v, FeatureKind::Edge, nOut, centre - (0.5 * (radius + h)) * nOut, radius - h};
     return out;
   }
-  if (outline && vx.geometry[v].arcRadius == 0.0) {
+  if (Outline && vx.geometry[v].arcRadius == 0.0) {
     // A point corner is never the feature: a walk passes through it to the edge on the centre's
     // side of the dividing line (the same test as the edges'). As a feature it would claim
     // centres inside B too, and report a gap where the corner overlaps.
@@ -132,7 +134,10 @@ void placeBlockVertices(Model& m, int b) {
   }
 }
 
-FeatureHit nearestFeature(const Model& m, int corner, int blockB) {
+namespace {
+
+template <bool Outline>
+FeatureHit nearestFeatureOn(const Model& m, int corner, int blockB) {
   const Vec2 centre = m.vertices.geometry[corner].arcCentre;
   const double radius = m.vertices.geometry[corner].arcRadius;
   // The feature whose surface is nearest the centre, among those whose region holds it: outside
@@ -149,7 +154,7 @@ FeatureHit nearestFeature(const Model& m, int corner, int blockB) {
   double bestDistance = INFINITY;
   bool found = false, edgeFound = false;
   for (int f = 0; f < 2 * m.blocks.vertexCount[blockB]; ++f) {
-    const Evaluation e = evaluate(m, blockB, f, centre, radius);
+    const Evaluation e = evaluate<Outline>(m, blockB, f, centre, radius);
     const double distance = std::abs(radius - e.hit.overlap);
     const bool nearer = !found || distance < bestDistance - tie ||
                         (e.hit.kind == FeatureKind::Corner && best.kind == FeatureKind::Edge && distance <= bestDistance + tie);
@@ -166,23 +171,36 @@ FeatureHit nearestFeature(const Model& m, int corner, int blockB) {
   return found ? best : nearestEdge;
 }
 
-FeatureHit followFeature(const Model& m, int corner, int blockB, int feature, FeatureKind kind) {
+template <bool Outline>
+FeatureHit followFeatureOn(const Model& m, int corner, int blockB, int feature, FeatureKind kind) {
   const Vec2 centre = m.vertices.geometry[corner].arcCentre;
   const double radius = m.vertices.geometry[corner].arcRadius;
   const int count = 2 * m.blocks.vertexCount[blockB];
   int f = localIndex(m, blockB, feature, kind);
   int previousStep = 0;
   for (int i = 0; i < count; ++i) {
-    const Evaluation e = evaluate(m, blockB, f, centre, radius);
+    const Evaluation e = evaluate<Outline>(m, blockB, f, centre, radius);
     // A reversal means the centre sits in a fold of two regions (only possible deep inside B).
-    if (e.step == 0 || e.step == -previousStep) return e.step == 0 ? e.hit : nearestFeature(m, corner, blockB);
+    if (e.step == 0 || e.step == -previousStep) return e.step == 0 ? e.hit : nearestFeatureOn<Outline>(m, corner, blockB);
     previousStep = e.step;
     f = (f + e.step + count) % count;
   }
-  return nearestFeature(m, corner, blockB);
+  return nearestFeatureOn<Outline>(m, corner, blockB);
 }
 
-double contactLength(const Model& m, int corner, const FeatureHit& hit) {
+}  // namespace
+
+FeatureHit nearestFeature(const Model& m, int corner, int blockB) {
+  return m.blocks.deformable[blockB] ? nearestFeatureOn<true>(m, corner, blockB)
+                                     : nearestFeatureOn<false>(m, corner, blockB);
+}
+
+FeatureHit followFeature(const Model& m, int corner, int blockB, int feature, FeatureKind kind) {
+  return m.blocks.deformable[blockB] ? followFeatureOn<true>(m, corner, blockB, feature, kind)
+                                     : followFeatureOn<false>(m, corner, blockB, feature, kind);
+}
+
+double contactLength(const Model& m, int corner, const FeatureHit& hit, bool onOutline) {
   const Vertices& vx = m.vertices;
   const Vec2 here = vx.geometry[corner].position;
   // The edges of B the corner may share a face with: the contacted edge, or both edges of the
@@ -220,8 +238,7 @@ double contactLength(const Model& m, int corner, const FeatureHit& hit) {
   // A corner touching alone shares no face: it gets the rounding length, so that its stiffness
   // never vanishes. On a deformable block's outline a shared face can be shorter than d (zones
   // finer than the rounding), and there the share is the partition of the joint and stands.
-  const bool outline = m.vertices.gridpoint[corner] >= 0 || m.vertices.gridpoint[hit.feature] >= 0;
-  return outline && length > 0.0 ? length : std::max(length, m.roundingLength);
+  return onOutline && length > 0.0 ? length : std::max(length, m.roundingLength);
 }
 
 }  // namespace vdec

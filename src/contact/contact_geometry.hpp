@@ -32,7 +32,10 @@ FeatureHit followFeature(const Model& model, int corner, int blockB, int feature
 // part of it that shares a face with B (the edge clipped to B's contacted edge, or to either
 // edge of B's contacted corner, with its clipped far end within the contact tolerance of that
 // edge's line); the rounding length d for a corner touching alone.
-double contactLength(const Model& model, int corner, const FeatureHit& hit);
+// onOutline: either block is deformable, where a share below d is the joint's partition and
+// stands (the caller knows the blocks; looking the vertices up here would cost two cache misses
+// per contact and step).
+double contactLength(const Model& model, int corner, const FeatureHit& hit, bool onOutline);
 
 // A contact's geometry at the blocks' present positions: normal (from B towards A), the point
 // where its force acts (midway between the two surfaces) and the overlap. The contact stage
