@@ -53,49 +53,6 @@ FeatureHit trackFeature(const Model& m, Contact& c) {
 }
 
 
-// Where a contact acts on a deformable block: one gridpoint (a corner of its outline), or the
-// two ends of an outline edge in proportion to the contact point's place along it (1.3.3.4.2).
-// A weight of 0 first marks a rigid block.
-struct BlockPoint {
-  int gridpoint[2] = {-1, -1};
-  double weight[2] = {0.0, 0.0};
-};
-
-BlockPoint cornerPoint(const Model& m, int corner) {
-  BlockPoint p;
-  if (const int g = m.vertices.gridpoint[corner]; g >= 0) {
-    p.gridpoint[0] = g;
-    p.weight[0] = 1.0;
-  }
-  return p;
-}
-
-BlockPoint featurePoint(const Model& m, const FeatureHit& hit, Vec2 where) {
-  const Vertices& vx = m.vertices;
-  BlockPoint p;
-  const int g = vx.gridpoint[hit.feature];
-  if (g < 0) return p;
-  if (hit.kind == FeatureKind::Corner) {
-    p.gridpoint[0] = g;
-    p.weight[0] = 1.0;
-    return p;
-  }
-  const VertexGeometry& e = vx.geometry[hit.feature];
-  const double along = std::clamp(dot(where - e.position, e.edgeDirection) / e.edgeLength, 0.0, 1.0);
-  // The first weight must be positive (it marks the deformable block): a point at the far end
-  // is that end's alone.
-  if (along >= 1.0) {
-    p.gridpoint[0] = vx.gridpoint[vx.next[hit.feature]];
-    p.weight[0] = 1.0;
-    return p;
-  }
-  p.gridpoint[0] = g;
-  p.weight[0] = 1.0 - along;
-  p.gridpoint[1] = vx.gridpoint[vx.next[hit.feature]];
-  p.weight[1] = along;
-  return p;
-}
-
 Vec2 pointVelocity(const Model& m, const BlockPoint& p) {
   Vec2 v = p.weight[0] * m.gridpoints.velocity[p.gridpoint[0]];
   if (p.weight[1] > 0.0) v += p.weight[1] * m.gridpoints.velocity[p.gridpoint[1]];

@@ -200,6 +200,41 @@ FeatureHit followFeature(const Model& m, int corner, int blockB, int feature, Fe
                                      : followFeatureOn<false>(m, corner, blockB, feature, kind);
 }
 
+BlockPoint cornerPoint(const Model& m, int corner) {
+  BlockPoint p;
+  if (const int g = m.vertices.gridpoint[corner]; g >= 0) {
+    p.gridpoint[0] = g;
+    p.weight[0] = 1.0;
+  }
+  return p;
+}
+
+BlockPoint featurePoint(const Model& m, const FeatureHit& hit, Vec2 where) {
+  const Vertices& vx = m.vertices;
+  BlockPoint p;
+  const int g = vx.gridpoint[hit.feature];
+  if (g < 0) return p;
+  if (hit.kind == FeatureKind::Corner) {
+    p.gridpoint[0] = g;
+    p.weight[0] = 1.0;
+    return p;
+  }
+  const VertexGeometry& e = vx.geometry[hit.feature];
+  const double along = std::clamp(dot(where - e.position, e.edgeDirection) / e.edgeLength, 0.0, 1.0);
+  // The first weight must be positive (it marks the deformable block): a point at the far end
+  // is that end's alone.
+  if (along >= 1.0) {
+    p.gridpoint[0] = vx.gridpoint[vx.next[hit.feature]];
+    p.weight[0] = 1.0;
+    return p;
+  }
+  p.gridpoint[0] = g;
+  p.weight[0] = 1.0 - along;
+  p.gridpoint[1] = vx.gridpoint[vx.next[hit.feature]];
+  p.weight[1] = along;
+  return p;
+}
+
 double contactLength(const Model& m, int corner, const FeatureHit& hit, bool onOutline) {
   const Vertices& vx = m.vertices;
   const Vec2 here = vx.geometry[corner].position;

@@ -37,6 +37,19 @@ FeatureHit followFeature(const Model& model, int corner, int blockB, int feature
 // per contact and step).
 double contactLength(const Model& model, int corner, const FeatureHit& hit, bool onOutline);
 
+// Where a contact acts on a deformable block: one gridpoint (a corner of its outline), or the
+// two ends of an outline edge in proportion to a point's place along it (1.3.3.4.2). A first
+// weight of 0 marks a rigid block.
+struct BlockPoint {
+  int gridpoint[2] = {-1, -1};
+  double weight[2] = {0.0, 0.0};
+};
+// The gridpoint of A's corner, if A is deformable.
+BlockPoint cornerPoint(const Model& model, int corner);
+// B's contacted corner's gridpoint, or its contacted edge's two gridpoints weighted by the place
+// of `where` along it, if B is deformable.
+BlockPoint featurePoint(const Model& model, const FeatureHit& hit, Vec2 where);
+
 // A contact's geometry at the blocks' present positions: normal (from B towards A), the point
 // where its force acts (midway between the two surfaces) and the overlap. The contact stage
 // forms the same from the positions at the start of each step; outputs use this.

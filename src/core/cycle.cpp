@@ -56,10 +56,11 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     if (settings_.staticSolve) {
       if (hasRigidBlocks_)
         throw SceneError("solver.static_solve: the direct solve covers deformable blocks only; this scene has rigid blocks");
-      if (hasContacts_)
-        throw SceneError("solver.static_solve: the direct solve assembles the zones of one block and not the joints "
-                         "between blocks, and this scene has " + std::to_string(bl.size()) + " blocks; relax it "
-                         "with explicit cycles instead (adaptive damping)");
+      for (const JointMaterial& j : model_.jointMaterials)
+        if (j.law == JointLaw::ContinuouslyYielding)
+          throw SceneError("solver.static_solve: the direct solve takes joints as linear springs, and joint material '" +
+                           j.name + "' is continuously yielding (its stiffness grows with the normal stress); relax "
+                           "the scene with explicit cycles instead");
       for (const BlockMaterial& mat : model_.blockMaterials)
         if (mat.plastic)
           throw SceneError("solver.static_solve: the direct solve is elastic, and block material '" + mat.name +
@@ -99,7 +100,9 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     const double vx = (g.driven[i] & DriveX) ? 0.0 : g.velocity[i].x, vy = (g.driven[i] & DriveY) ? 0.0 : g.velocity[i].y;
     energy_.initial += 0.5 * g.mass[i] * (vx * vx + vy * vy);
   }
-  // Stress present at the start (in situ) is energy the model was given.
+  // Stress present at the start (in situ, or joints set by the direct solve) is energy the model
+  // was given.
+  for (const Contact& c : model_.contacts) energy_.initial += c.springEnergy;
   const Zones& zn = model_.zones;
   for (int z = 0; z < zn.size(); ++z) {
     const BlockMaterial& mat = model_.blockMaterials[zn.material[z]];

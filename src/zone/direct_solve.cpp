@@ -6,7 +6,10 @@
 #include <cmath>
 #include <vector>
 
+#include "contact/contact_geometry.hpp"
+#include "contact/deformable_outline.hpp"
 #include "core/errors.hpp"
+#include "joint/joint_laws.hpp"
 #include "motion/gridpoint_motion.hpp"
 #include "zone/cst.hpp"
 
@@ -25,6 +28,44 @@ ShapeGradients gradients(Vec2 p0, Vec2 p1, Vec2 p2) {
   return {{(p1.y - p2.y) * inv, (p2.y - p0.y) * inv, (p0.y - p1.y) * inv},
           {(p2.x - p1.x) * inv, (p0.x - p2.x) * inv, (p1.x - p0.x) * inv},
           0.5 * twice};
+}
+
+// A closed joint between deformable blocks as a linear spring: the gridpoints it joins, each
+// with its coefficient in the relative displacement u_A - u_B at the contact (1 for A's
+// gridpoint, minus B's interpolation weights), and the stiffness W (kn n n^T + ks t t^T).
+struct JointSpring {
+  int contact = -1;
+  int gridpoint[3] = {-1, -1, -1};
+  double coefficient[3] = {0.0, 0.0, 0.0};
+  Vec2 normal, tangent;
+  double kn = 0.0, ks = 0.0;  // times the contact's weight (its length)
+};
+
+std::vector<JointSpring> jointSprings(const Model& m) {
+  std::vector<JointSpring> springs;
+  for (std::size_t i = 0; i < m.contacts.size(); ++i) {
+    const Contact& c = m.contacts[i];
+    if (c.open) continue;
+    const JointMaterial& j = m.jointMaterials[c.joint];
+    const FeatureHit hit = contactGeometry(m, c);
+    const BlockPoint a = cornerPoint(m, c.corner);
+    const BlockPoint b = featurePoint(m, hit, m.vertices.geometry[c.corner].position);
+    JointSpring s;
+    s.contact = static_cast<int>(i);
+    s.gridpoint[0] = a.gridpoint[0];
+    s.coefficient[0] = 1.0;
+    for (int k = 0; k < 2; ++k) {
+      s.gridpoint[1 + k] = b.gridpoint[k];
+      s.coefficient[1 + k] = -b.weight[k];
+    }
+    s.normal = hit.normal;
+    s.tangent = {hit.normal.y, -hit.normal.x};
+    const double weight = contactWeight(j, c);
+    s.kn = weight * j.kn;
+    s.ks = weight * j.ks;
+    springs.push_back(s);
+  }
+  return springs;
 }
 
 constexpr int kMaxSolves = 6;
@@ -98,6 +139,33 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
       }
     }
   }
+  // Joints between the blocks: springs on the relative displacement at each closed contact, and
+  // the force of their present stresses (on A, f = fn n - fs t; on B its opposite, shared).
+  const std::vector<JointSpring> springs = jointSprings(m);
+  for (const JointSpring& js : springs) {
+    const Contact& c = m.contacts[js.contact];
+    const double w = contactWeight(m.jointMaterials[c.joint], c);
+    const Vec2 force = (w * c.normalStress) * js.normal - (w * c.shearStress) * js.tangent;
+    const double S[2][2] = {{js.kn * js.normal.x * js.normal.x + js.ks * js.tangent.x * js.tangent.x,
+                             js.kn * js.normal.x * js.normal.y + js.ks * js.tangent.x * js.tangent.y},
+                            {js.kn * js.normal.y * js.normal.x + js.ks * js.tangent.y * js.tangent.x,
+                             js.kn * js.normal.y * js.normal.y + js.ks * js.tangent.y * js.tangent.y}};
+    for (int p = 0; p < 3; ++p) {
+      if (js.gridpoint[p] < 0) continue;
+      for (int r = 0; r < 2; ++r) {
+        const int row = unknown[2 * js.gridpoint[p] + r];
+        if (row < 0) continue;
+        f[row] += js.coefficient[p] * (r == 0 ? force.x : force.y);
+        for (int q = 0; q < 3; ++q) {
+          if (js.gridpoint[q] < 0) continue;
+          for (int t = 0; t < 2; ++t) {
+            const int col = unknown[2 * js.gridpoint[q] + t];
+            if (col >= 0) entries.emplace_back(row, col, js.coefficient[p] * js.coefficient[q] * S[r][t]);
+          }
+        }
+      }
+    }
+  }
   Eigen::SparseMatrix<double> K(count, count);
   K.setFromTriplets(entries.begin(), entries.end());
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(K);
@@ -110,7 +178,8 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
   }
   if (!held)
     throw SceneError("solver.static_solve: the zones are not held against rigid-body motion (the stiffness "
-                     "is singular); fix more gridpoint components");
+                     "is singular); fix more gridpoint components, or check that every block is held or joined "
+                     "to one that is by closed joints");
   const Eigen::VectorXd u = solver.solve(f);
   // Apply: stresses take the elastic increment of du on the configuration it was solved on.
   report.unknowns = count;
@@ -132,12 +201,40 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
     zn.sxy[z] += mat.shear * e[2];
     zn.szz[z] += a2 * (e[0] + e[1]);
   }
-  for (int i = 0; i < g.size(); ++i) {
+  auto displacement = [&](int i) {
     const int ix = unknown[2 * i], iy = unknown[2 * i + 1];
-    const Vec2 du{ix >= 0 ? u[ix] : 0.0, iy >= 0 ? u[iy] : 0.0};
+    return Vec2{ix >= 0 ? u[ix] : 0.0, iy >= 0 ? u[iy] : 0.0};
+  };
+  // Joints take the increments of their relative displacement through their law, as the contact
+  // stage would (closing positive along n, shear along t).
+  for (const JointSpring& js : springs) {
+    Vec2 relative;
+    for (int p = 0; p < 3; ++p)
+      if (js.gridpoint[p] >= 0) relative += js.coefficient[p] * displacement(js.gridpoint[p]);
+    Contact& c = m.contacts[js.contact];
+    const double dun = -dot(relative, js.normal), dus = dot(relative, js.tangent);
+    updateJointStresses(m.jointMaterials[c.joint], c, dun, dus);
+    c.normalDisplacement += dun;
+    c.shearDisplacement += dus;
+  }
+  for (int i = 0; i < g.size(); ++i) {
+    const Vec2 du = displacement(i);
     g.position[i] += du;
     g.velocity[i] = {};
     report.largestDisplacement = std::max(report.largestDisplacement, norm(du));
+  }
+  // The contacts' geometry at the new positions, so that the first explicit step measures its
+  // own closure from here, and the springs' energy for the energy account.
+  if (!springs.empty()) {
+    for (int b = 0; b < m.blocks.size(); ++b)
+      if (m.blocks.deformable[b]) placeOutlineVertices(m, b);
+    for (Contact& c : m.contacts) {
+      const JointMaterial& j = m.jointMaterials[c.joint];
+      const FeatureHit hit = contactGeometry(m, c);
+      c.overlap = hit.overlap;
+      if (!c.open) c.length = contactLength(m, c.corner, hit, true);
+      c.springEnergy = c.open ? 0.0 : contactWeight(j, c) * jointSpringEnergy(j, c);
+    }
   }
   // The scale of the forces in play: the loads, or the zones' own forces when in-situ stress
   // alone drives the problem.
