@@ -165,7 +165,7 @@ void Cycle::buildStages() {
   }
   if (hasRigidBlocks_) {
     stages_.push_back({"rigid-block-motion", [this] {
-                         step_.merge(integrateRigidBlocks(model_, dt_, alpha_));
+                         step_.merge(integrateRigidBlocks(model_, dt_, alpha_, settings_.localDamping));
                        }});
   }
   if (hasZones_) {
@@ -175,7 +175,7 @@ void Cycle::buildStages() {
     for (int b = 0; hasContacts_ && b < model_.blocks.size(); ++b)
       if (model_.blocks.deformable[b]) outlined.push_back(b);
     stages_.push_back({"gridpoint-motion", [this, outlined] {
-                         step_.merge(integrateGridpoints(model_, dt_, alpha_));
+                         step_.merge(integrateGridpoints(model_, dt_, alpha_, settings_.localDamping));
                          for (const int b : outlined) placeOutlineVertices(model_, b);
                        }});
   }

@@ -26,6 +26,7 @@ struct RunSettings {
   double zoneFraction = 1.0;
   double massDamping = 0.0;   // alpha of 1.3-21, 1/s
   bool adaptiveDamping = false;  // alpha by the servo of 1.3-23 instead
+  double localDamping = 0.0;     // alpha_L of local damping (motion_totals.hpp), instead of mass damping
   bool densityScaling = false;   // gridpoint inertial masses scaled to one step (1.3-32 to 1.3-34)
   bool staticSolve = false;      // start from the direct solution of the elastic zones (zone/direct_solve)
   StopCriteria stop;

@@ -257,6 +257,14 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
       t->fail("zone_fraction", "must be in (0, 10], got " + shown(scene.settings.zoneFraction));
     scene.settings.massDamping = t->nonNegative("mass_damping", 0.0);
     scene.settings.adaptiveDamping = t->boolean("adaptive_damping", false);
+    if (t->has("local_damping")) {
+      scene.settings.localDamping = t->number("local_damping");
+      if (!(scene.settings.localDamping > 0.0 && scene.settings.localDamping < 1.0))
+        t->fail("local_damping", "must lie in (0, 1): the fraction of each out-of-balance force turned against the motion "
+                                 "(0.8 is the usual value)");
+      if (t->has("mass_damping") || scene.settings.adaptiveDamping)
+        t->fail("local_damping", "replaces mass damping; give local_damping or mass_damping / adaptive_damping, not both");
+    }
     if (scene.settings.adaptiveDamping && t->has("mass_damping"))
       t->fail("mass_damping", "adaptive_damping sets the mass damping itself; give one or the other");
     scene.settings.densityScaling = t->boolean("density_scaling", false);

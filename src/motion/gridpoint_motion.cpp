@@ -29,7 +29,7 @@ void applyDrivenVelocities(Model& m, double dt) {
   }
 }
 
-MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha) {
+MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha, double local) {
   Gridpoints& g = m.gridpoints;
   const Zones& zn = m.zones;
   const GridpointZones& gz = m.gridpointZones;
@@ -62,8 +62,10 @@ MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha) {
       }
       free = true;
       unbalanced += force * force;
-      const double u1 = keep * (lose * u0 + (dt / mass) * force);
+      const double damping = localDampingForce(local, force, u0);
+      const double u1 = keep * (lose * u0 + (dt / mass) * (force + damping));
       const double ubar = 0.5 * (u0 + u1);
+      t.dampingDissipation -= damping * ubar * dt;
       t.kineticEnergy += 0.25 * mass * (u0 * u0 + u1 * u1);
       t.externalWork += bodyForce * u1 * dt;
       t.dampingDissipation += alpha * mass * ubar * ubar * dt;

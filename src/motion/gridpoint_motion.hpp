@@ -17,6 +17,6 @@ void applyDrivenVelocities(Model& model, double dt);
 
 // Advances every gridpoint one step: gathers its zone forces in a fixed order, adds gravity and
 // tractions, integrates free components by 1.3-21 and holds driven ones at their velocity.
-MotionStepTotals integrateGridpoints(Model& model, double dt, double massDamping);
+MotionStepTotals integrateGridpoints(Model& model, double dt, double massDamping, double localDamping = 0.0);
 
 }  // namespace vdec

@@ -2,8 +2,19 @@
 // What a motion stage (rigid blocks or gridpoints) reports of one step, summed the same way for
 // both so that the cycle adds them without knowing which produced them.
 #include <algorithm>
+#include <cmath>
 
 namespace vdec {
+
+// Local damping: a force opposing the motion of each degree of freedom in proportion to the
+// magnitude of its out-of-balance force, -alpha_L |F| sgn(v) (v at the start of the step), so
+// that it vanishes at equilibrium whatever the velocity and damps every mode alike. vdec's
+// alternative to mass damping (1.3-21), which resists steady motion and lets a suddenly applied
+// load overshoot; see docs/models/deformable-blocks.md#local-damping.
+inline double localDampingForce(double alphaLocal, double force, double velocity) {
+  if (alphaLocal <= 0.0 || velocity == 0.0) return 0.0;
+  return velocity > 0.0 ? -alphaLocal * std::abs(force) : alphaLocal * std::abs(force);
+}
 
 struct MotionStepTotals {
   double kineticEnergy = 0.0;       // time-centred: mean of the energies at t - dt/2 and t + dt/2

@@ -8,7 +8,7 @@
 
 namespace vdec {
 
-MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha) {
+MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha, double local) {
   MotionStepTotals totals;
   Blocks& bl = m.blocks;
   const double lose = 1.0 - 0.5 * alpha * dt, keep = 1.0 / (1.0 + 0.5 * alpha * dt);
@@ -23,12 +23,13 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha) {
     const double load = contact + body;
     unbalanced += load * load;
     // 1.3-21: v(t+dt/2) = [v(t-dt/2)(1 - a dt/2) + (F/m + g) dt] / (1 + a dt/2)
-    const double v1 = keep * (lose * v0 + (dt / inertia) * load);
+    const double damping = localDampingForce(local, load, v0);
+    const double v1 = keep * (lose * v0 + (dt / inertia) * (load + damping));
     totals.kineticEnergy += 0.25 * inertia * (v0 * v0 + v1 * v1);
     // 1.3-21 is m (v1 - v0) / dt = F - alpha m vbar with vbar = (v0 + v1) / 2, so the kinetic
     // energy changes by F vbar dt - alpha m vbar^2 dt: the second term is what damping takes.
     const double vbar = 0.5 * (v0 + v1);
-    totals.dampingDissipation += alpha * inertia * vbar * vbar * dt;
+    totals.dampingDissipation += alpha * inertia * vbar * vbar * dt - damping * vbar * dt;
     totals.dampingPower += inertia * vbar * vbar;
     totals.kineticRate += inertia * vbar * (v1 - v0) / dt;
     totals.externalWork += body * v1 * dt;

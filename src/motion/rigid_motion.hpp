@@ -9,7 +9,7 @@ namespace vdec {
 
 // Advances every block by one step: free degrees of freedom by 1.3-21 (translation and
 // rotation damped alike), driven ones at their prescribed velocity. Clears the force sums.
-MotionStepTotals integrateRigidBlocks(Model& model, double dt, double massDamping);
+MotionStepTotals integrateRigidBlocks(Model& model, double dt, double massDamping, double localDamping = 0.0);
 
 // dt_b = FRAC * 2 sqrt(M_min / K_max), K_max = max(Kn, Ks) for point contacts and
 // max(kn, ks) * l_typ for joints (1.3-28, 1.3-29). M_min and l_typ (the longest edge) are over

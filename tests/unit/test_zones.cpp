@@ -463,3 +463,52 @@ TEST(Zones, TableHistoryExcavationAndOutputInputErrorsNameTheKey) {
   EXPECT_NE(sceneError(both, "z-both-kinds").find("give either max_edge (unstructured) or nx and ny"), std::string::npos)
       << sceneError(both, "z-both-kinds");
 }
+
+TEST(Zones, LocalDampingReachesTheSameEquilibriumAndAccountsItsWork) {
+  VDEC_REQUIREMENTS("REQ-ZONE-016");
+  // A column under gravity, its base held, relaxed with local damping (0.8) and with adaptive
+  // mass damping: the same static stresses, and with local damping the energy account closes
+  // (the work of gravity is the strain energy stored plus what the damping took).
+  auto run = [](const std::string& damping) {
+    std::string text = quadScene(4, 6, R"(
+[[boundary]]
+block = "patch"
+y = [-0.01, 0.31]
+x = [-0.01, 2.01]
+fix = ["x", "y"]
+)");
+    text.replace(text.find("rounding = 0.01"), 15, "rounding = 0.01\ngravity = [0.0, -10.0]");
+    text.replace(text.find("[stop]\ncycles = 10"), 18, "[solver]\n" + damping + "\n[stop]\nratio = 1e-9\ncycles = 400000");
+    Scene scene = sceneFromText(text, "column-" + damping.substr(0, 5));
+    Cycle cycle(scene.model, scene.settings, {});
+    const RunReport r = cycle.run();
+    EXPECT_EQ(r.stopReason, "ratio") << damping << ": " << r.error;
+    return std::make_pair(scene.model, r);
+  };
+  const auto [local, localReport] = run("local_damping = 0.8");
+  const auto [adaptive, adaptiveReport] = run("adaptive_damping = true");
+  double largest = 0.0;
+  for (int z = 0; z < local.zones.size(); ++z) largest = std::max(largest, std::abs(adaptive.zones.syy[z]));
+  for (int z = 0; z < local.zones.size(); ++z) {
+    EXPECT_NEAR(local.zones.syy[z], adaptive.zones.syy[z], 1e-6 * largest) << "zone " << z;
+    EXPECT_NEAR(local.zones.sxx[z], adaptive.zones.sxx[z], 1e-6 * largest) << "zone " << z;
+  }
+  const EnergyReport& e = localReport.energy;
+  EXPECT_GT(e.dampingDissipation, 0.0);
+  EXPECT_NEAR(e.externalWork, e.strain + e.kinetic + e.dampingDissipation, 1e-3 * e.externalWork);
+}
+
+TEST(Zones, LocalDampingOutOfRangeOrWithMassDampingIsAnError) {
+  VDEC_REQUIREMENTS("REQ-ZONE-016");
+  auto withSolver = [](const std::string& solver) {
+    std::string text = quadScene(2, 2);
+    text.replace(text.find("[stop]"), 6, "[solver]\n" + solver + "\n[stop]");
+    return sceneError(text, "local-damping");
+  };
+  EXPECT_NE(withSolver("local_damping = 1.0").find("key 'solver.local_damping': must lie in (0, 1)"), std::string::npos)
+      << withSolver("local_damping = 1.0");
+  EXPECT_NE(withSolver("local_damping = 0.0").find("must lie in (0, 1)"), std::string::npos);
+  EXPECT_NE(withSolver("local_damping = 0.8\nadaptive_damping = true").find("replaces mass damping"), std::string::npos);
+  EXPECT_NE(withSolver("local_damping = 0.8\nmass_damping = 10.0").find("replaces mass damping"), std::string::npos);
+  EXPECT_EQ(withSolver("local_damping = 0.8"), "");
+}
