@@ -40,6 +40,27 @@ TEST(RigidMotion, MassDampingFollowsEquation1321) {
   EXPECT_NEAR(m.blocks.angularVelocity[1], 3.0 * (1 - a * dt / 2) / (1 + a * dt / 2), 1e-15);
 }
 
+TEST(RigidMotion, LocalDampingOpposesTheMotionByAFractionOfTheForce) {
+  VDEC_REQUIREMENTS("REQ-ZONE-016");
+  // v1 = v0 + (F - alpha_L |F| sgn v0) dt / m per degree of freedom: x moves with its force
+  // (damping takes 0.8 of it), y against its force (damping adds 0.8 of it), rotation has no
+  // moment (no damping force).
+  Scene s = sceneFromText(blockOnBase(), "local");
+  Model& m = s.model;
+  m.gravity = {0.0, 0.0};
+  m.blocks.velocity[1] = {2.0, -1.0};
+  m.blocks.angularVelocity[1] = 3.0;
+  m.blocks.force[1] = {500.0, 250.0};
+  const double dt = 1e-2, mass = 2500.0;
+  const MotionStepTotals t = integrateRigidBlocks(m, dt, 0.0, 0.8);
+  EXPECT_NEAR(m.blocks.velocity[1].x, 2.0 + (500.0 - 0.8 * 500.0) * dt / mass, 1e-15);
+  EXPECT_NEAR(m.blocks.velocity[1].y, -1.0 + (250.0 + 0.8 * 250.0) * dt / mass, 1e-15);
+  EXPECT_EQ(m.blocks.angularVelocity[1], 3.0);
+  // Its work over the step, -F_d vbar dt, is dissipation.
+  const double vx1 = m.blocks.velocity[1].x, vy1 = m.blocks.velocity[1].y;
+  EXPECT_NEAR(t.dampingDissipation, 0.8 * 500.0 * 0.5 * (2.0 + vx1) * dt - 0.8 * 250.0 * 0.5 * (-1.0 + vy1) * dt, 1e-12);
+}
+
 TEST(RigidMotion, DrivenDegreesOfFreedomKeepTheirVelocity) {
   VDEC_REQUIREMENTS("REQ-MOTION-003");
   Scene s = sceneFromText(blockOnBase(), "driven");
