@@ -46,6 +46,10 @@ int runScene(const std::string& scenePath, const std::string& outDir, const std:
     std::fprintf(stderr, "vdec: warning: stopped on %s before the unbalanced-force ratio fell to %g (last %.3e): "
                  "the model may not be in equilibrium\n", report.stopReason.c_str(), ratio,
                  report.lastMonitors.unbalancedRatio);
+  if (report.staticSolveResidual > 1e-6)
+    std::fprintf(stderr, "vdec: warning: the direct solve did not converge (last residual %.3e of the forces): joints "
+                 "slipped or opened under its load, which its linear springs do not follow; the explicit cycles went "
+                 "on from its last state\n", report.staticSolveResidual);
   if (report.errorCode != 0) {
     std::fprintf(stderr, "vdec: error: %s\n(results up to the failure written to %s/results.json)\n",
                  report.error.c_str(), outDir.c_str());

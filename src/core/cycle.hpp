@@ -68,6 +68,9 @@ struct RunReport {
   Monitors lastMonitors;
   int detectionScans = 0;
   double staticSolveSeconds = -1.0;  // < 0: no direct solve
+  // The direct solve's last right-hand side over the force scale: near round-off when it
+  // converged; larger when joints slipped or opened during it (the cycles then finish the job).
+  double staticSolveResidual = -1.0;
   double wallSeconds = 0.0;
   // Set when a numerical error stopped the run; the report then holds the state up to it.
   std::string error;
@@ -127,6 +130,7 @@ class Cycle {
   double alpha_ = 0.0;                       // mass damping in use, 1/s
   double servoPower_ = 0.0, servoRate_ = 0.0;
   double staticSolveSeconds_ = -1.0;
+  double staticSolveResidual_ = -1.0;
   EnergyReport energy_;
   Monitors monitors_;
 };

@@ -33,6 +33,9 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::KineticEnergy, "model.kinetic_energy", S::Model, "J/m", "kinetic energy (time-centred)"},
       {Q::StrainEnergy, "model.strain_energy", S::Model, "J/m", "elastic energy in the contacts and zones"},
       {Q::EnergyRatio, "model.energy_ratio", S::Model, "-", "(kinetic + strain energy) / largest energy supplied so far"},
+      {Q::MeanSxx, "model.mean_sxx", S::Model, "Pa", "sxx of all zones, averaged over their present areas"},
+      {Q::MeanSyy, "model.mean_syy", S::Model, "Pa", "syy of all zones, averaged over their present areas"},
+      {Q::MeanSxy, "model.mean_sxy", S::Model, "Pa", "sxy of all zones, averaged over their present areas"},
       {Q::GridpointDisplacementX, "gridpoint.displacement_x", S::Gridpoint, "m", "x displacement of a deformable block's gridpoint"},
       {Q::GridpointDisplacementY, "gridpoint.displacement_y", S::Gridpoint, "m", "y displacement of a deformable block's gridpoint"},
       {Q::GridpointVelocityX, "gridpoint.velocity_x", S::Gridpoint, "m/s", "x velocity of the gridpoint (at the half step)"},
@@ -93,6 +96,20 @@ double jointMeasure(const Model& m, const HistorySpec& h) {
   }
 }
 
+// The area-weighted mean of one stress component over all zones: with free sides and loads on
+// two opposite faces, the mean syy is the load over the width, by equilibrium.
+double meanZoneStress(const Model& m, const std::vector<double>& component) {
+  const Gridpoints& g = m.gridpoints;
+  double sum = 0.0, area = 0.0;
+  for (int z = 0; z < m.zones.size(); ++z) {
+    const auto& n = m.zones.gridpoint[z];
+    const double a = 0.5 * cross(g.position[n[1]] - g.position[n[0]], g.position[n[2]] - g.position[n[0]]);
+    sum += a * component[z];
+    area += a;
+  }
+  return area > 0.0 ? sum / area : 0.0;
+}
+
 }  // namespace
 
 double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) {
@@ -121,6 +138,9 @@ double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) 
     case HistoryQuantity::ZoneSyy: return m.zones.syy[h.zone];
     case HistoryQuantity::ZoneSxy: return m.zones.sxy[h.zone];
     case HistoryQuantity::ZoneSzz: return m.zones.szz[h.zone];
+    case HistoryQuantity::MeanSxx: return meanZoneStress(m, m.zones.sxx);
+    case HistoryQuantity::MeanSyy: return meanZoneStress(m, m.zones.syy);
+    case HistoryQuantity::MeanSxy: return meanZoneStress(m, m.zones.sxy);
     default: return jointMeasure(m, h);
   }
 }

@@ -19,6 +19,7 @@ enum class HistoryQuantity {
   UnbalancedRatio, LargestUnbalancedForce, KineticEnergy, StrainEnergy, EnergyRatio,
   GridpointDisplacementX, GridpointDisplacementY, GridpointVelocityX, GridpointVelocityY,
   ZoneSxx, ZoneSyy, ZoneSxy, ZoneSzz,
+  MeanSxx, MeanSyy, MeanSxy,
 };
 
 enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone };

@@ -117,6 +117,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
               {"exit_code", report.errorCode},
               {"contact_detection_scans", report.detectionScans},
               {"static_solve_seconds", report.staticSolveSeconds >= 0 ? nlohmann::json(report.staticSolveSeconds) : nlohmann::json()},
+              {"static_solve_residual", report.staticSolveResidual >= 0 ? nlohmann::json(report.staticSolveResidual) : nlohmann::json()},
               {"unbalanced_ratio", report.lastMonitors.unbalancedRatio},
               {"stage_seconds", profile}};
   j["energy"] = {{"initial", report.energy.initial},

@@ -4,6 +4,7 @@
 #include <Eigen/SparseCore>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <vector>
 
 #include "contact/contact_geometry.hpp"
@@ -223,12 +224,31 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
     g.velocity[i] = {};
     report.largestDisplacement = std::max(report.largestDisplacement, norm(du));
   }
-  // The contacts' geometry at the new positions, so that the first explicit step measures its
-  // own closure from here, and the springs' energy for the energy account.
-  if (!springs.empty()) {
+  // The contacts' geometry at the new positions. A joint that took its increments above has its
+  // overlap formed again, so that the first explicit step measures its own closure from here,
+  // and its springs' energy counts as given. An open contact keeps the overlap it had: the
+  // first explicit step then sees in it what the solve moved the blocks, closing or opening it
+  // as the contact stage would, and is evaluated at once (the motion clock has not run).
+  if (!g.contactForce.empty()) {
     for (int b = 0; b < m.blocks.size(); ++b)
       if (m.blocks.deformable[b]) placeOutlineVertices(m, b);
-    for (Contact& c : m.contacts) {
+    std::vector<char> sprung(m.contacts.size(), 0);
+    for (const JointSpring& js : springs) sprung[js.contact] = 1;
+    for (std::size_t i = 0; i < m.contacts.size(); ++i) {
+      Contact& c = m.contacts[i];
+      if (!sprung[i]) {
+        // The solve held this joint open (no spring); if the blocks now overlap there, its
+        // answer is not one the joint allows.
+        if (contactGeometry(m, c).overlap > 0.0) {
+          std::ostringstream msg;
+          msg << "solver.static_solve: the direct solve closed an open joint (contact " << i << " between blocks '"
+              << m.blocks.name[c.blockA] << "' and '" << m.blocks.name[c.blockB] << "'): it takes the joints open or "
+              << "closed as they are at the start; close the gap in the scene, or relax it with explicit cycles instead";
+          throw SceneError(msg.str());
+        }
+        c.closableAt = 0.0;
+        continue;
+      }
       const JointMaterial& j = m.jointMaterials[c.joint];
       const FeatureHit hit = contactGeometry(m, c);
       c.overlap = hit.overlap;

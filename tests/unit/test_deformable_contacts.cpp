@@ -490,3 +490,66 @@ TEST(DeformableContacts, ZonesFinerThanTheRoundingStillPartitionTheJoint) {
   }
   EXPECT_NEAR(length, 0.1, 1e-5);
 }
+
+TEST(DeformableContacts, TheDirectSolveRefusesToCloseAnOpenJointAndReportsSlip) {
+  VDEC_REQUIREMENTS("REQ-ZONE-009, REQ-ZONE-014");
+  // The solve's springs are the joints closed at the start. Two blocks side by side, each held
+  // at its base, 50 um apart (their joint open), the left pushed towards the right: the solve
+  // would push it through the right one, which it must refuse rather than let the cycles start
+  // from interpenetrating blocks.
+  const std::string apart = R"(
+[model]
+rounding = 0.01
+[solver]
+adaptive_damping = true
+static_solve = true
+[stop]
+ratio = 1e-7
+cycles = 1000
+)" + rockAndJoint(1e11) + R"(
+[[block]]
+name = "left"
+material = "rock"
+vertices = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+zoning = { nx = 4, ny = 4 }
+[[block]]
+name = "right"
+material = "rock"
+vertices = [[1.00005, 0.0], [2.00005, 0.0], [2.00005, 1.0], [1.00005, 1.0]]
+zoning = { nx = 4, ny = 4 }
+[[boundary]]
+block = "left"
+y = [0.0, 0.0]
+fix = ["x", "y"]
+[[boundary]]
+block = "right"
+y = [0.0, 0.0]
+fix = ["x", "y"]
+[[boundary]]
+block = "left"
+x = [0.0, 0.0]
+pressure = 2e6
+)";
+  Scene s = sceneFromText(apart, "apart-direct");
+  try {
+    Cycle cycle(s.model, s.settings, {});
+    FAIL() << "a direct solve through an open joint was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("the direct solve closed an open joint"), std::string::npos) << e.what();
+  }
+  // A cohesionless joint sheared beyond its strength: the linear springs cannot follow the slip,
+  // so the solve does not converge; it says so (its residual), and the cycles finish the job.
+  std::string sheared = stackScene(2, 2, "[[boundary]]\nblock = \"upper\"\ny = [2.0, 2.0]\nfix = [\"x\"]\n");
+  sheared.replace(sheared.find("adaptive_damping = true"), 23, "adaptive_damping = true\nstatic_solve = true");
+  sheared.replace(sheared.find("cohesion = 1e6\ntension = 1e6\n"), 28, "");
+  sheared.replace(sheared.find("[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]"), 48,
+                  "[[0.0, 0.0], [1.0, 0.0], [1.0, 1.8], [0.0, 0.2]]");
+  sheared.replace(sheared.find("[[0.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]]"), 48,
+                  "[[0.0, 0.2], [1.0, 1.8], [1.0, 2.0], [0.0, 2.0]]");
+  Scene slip = sceneFromText(sheared, "stack-direct-slip");
+  Cycle cycle(slip.model, slip.settings, {});
+  const RunReport r = cycle.run();
+  EXPECT_EQ(r.errorCode, 0) << r.error;
+  EXPECT_GT(r.staticSolveResidual, 1e-3);
+  EXPECT_EQ(r.stopReason, "ratio");
+}
