@@ -553,3 +553,26 @@ pressure = 2e6
   EXPECT_GT(r.staticSolveResidual, 1e-3);
   EXPECT_EQ(r.stopReason, "ratio");
 }
+
+TEST(DeformableContacts, TheMeanZoneStressHistoryIsTheLoadOverTheWidth) {
+  VDEC_REQUIREMENTS("REQ-MC-005");
+  // model.mean_syy averages syy over all zones by their present areas: on the jointed stack
+  // under 100 kPa it is -p (the stress is uniform), and model.mean_sxx is 0.
+  const std::string text = stackScene(4, 3, R"(
+[[history]]
+name = "syy"
+quantity = "model.mean_syy"
+every = 1000
+[[history]]
+name = "sxx"
+quantity = "model.mean_sxx"
+every = 1000
+)");
+  Scene s = sceneFromText(text, "stack-mean");
+  Cycle cycle(s.model, s.settings, s.histories);
+  const RunReport r = cycle.run();
+  ASSERT_EQ(r.errorCode, 0) << r.error;
+  ASSERT_EQ(r.histories.size(), 2u);
+  EXPECT_NEAR(r.histories[0].value.back(), -kPressure, 2e-5 * kPressure);
+  EXPECT_NEAR(r.histories[1].value.back(), 0.0, 2e-5 * kPressure);
+}
