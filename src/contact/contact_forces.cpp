@@ -55,13 +55,13 @@ FeatureHit trackFeature(const Model& m, Contact& c) {
 
 Vec2 pointVelocity(const Model& m, const BlockPoint& p) {
   Vec2 v = p.weight[0] * m.gridpoints.velocity[p.gridpoint[0]];
-  if (p.weight[1] > 0.0) v += p.weight[1] * m.gridpoints.velocity[p.gridpoint[1]];
+  if (p.gridpoint[1] >= 0) v += p.weight[1] * m.gridpoints.velocity[p.gridpoint[1]];
   return v;
 }
 
 void addPointForce(Model& m, const BlockPoint& p, Vec2 f) {
   m.gridpoints.contactForce[p.gridpoint[0]] += p.weight[0] * f;
-  if (p.weight[1] > 0.0) m.gridpoints.contactForce[p.gridpoint[1]] += p.weight[1] * f;
+  if (p.gridpoint[1] >= 0) m.gridpoints.contactForce[p.gridpoint[1]] += p.weight[1] * f;
 }
 
 }  // namespace
@@ -103,10 +103,10 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
     // B is taken at the point facing A's: where a gridpoint of A is, the material point of B
     // across from it (not the rounded tip's, up to d away), so that the relative motion is that
     // of two material points and a uniform strain shared by both sides shears no joint.
-    const Vec2 facing = pa.weight[0] > 0.0 ? m.vertices.geometry[c.corner].position : hit.point;
+    const Vec2 facing = pa.onGridpoints() ? m.vertices.geometry[c.corner].position : hit.point;
     const BlockPoint pb = outlines ? featurePoint(m, hit, facing) : BlockPoint{};
-    const Vec2 va = pa.weight[0] > 0.0 ? pointVelocity(m, pa) : bl.velocity[a] + bl.angularVelocity[a] * perp(ra);
-    const Vec2 vb = pb.weight[0] > 0.0 ? pointVelocity(m, pb) : bl.velocity[b] + bl.angularVelocity[b] * perp(rb);
+    const Vec2 va = pa.onGridpoints() ? pointVelocity(m, pa) : bl.velocity[a] + bl.angularVelocity[a] * perp(ra);
+    const Vec2 vb = pb.onGridpoints() ? pointVelocity(m, pb) : bl.velocity[b] + bl.angularVelocity[b] * perp(rb);
     const Vec2 tangent{hit.normal.y, -hit.normal.x};
     const double dus = dot(va - vb, tangent) * dt;
 
@@ -144,13 +144,13 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
 
     // Force on A from B; the shear force resists A's motion along the tangent.
     const Vec2 f = fn * hit.normal - fs * tangent;
-    if (pa.weight[0] > 0.0) {
+    if (pa.onGridpoints()) {
       addPointForce(m, pa, f);
     } else {
       bl.force[a] += f;
       bl.moment[a] += cross(ra, f);
     }
-    if (pb.weight[0] > 0.0) {
+    if (pb.onGridpoints()) {
       addPointForce(m, pb, -f);
     } else {
       bl.force[b] -= f;

@@ -18,6 +18,14 @@ struct Evaluation {
   FeatureHit hit;
 };
 
+// Which side of point corner v a centre lies on: the edges at a point corner meet on the line
+// through it along the mean of their normals, i.e. where the mean of their directions projects
+// to zero; negative on the side of the edge before v, positive on the edge after it. Edges and
+// the corner itself all use this one test, so that a walk never goes back and forth.
+double pointCornerSide(const Vertices& vx, int v, Vec2 centre) {
+  return dot(centre - vx.geometry[v].position, vx.geometry[vx.prev[v]].edgeDirection + vx.geometry[v].edgeDirection);
+}
+
 // Outline: B is a deformable block, whose outline has point corners. A template parameter, so
 // that the rigid blocks' walk, the hot loop of the contact stage, stays as small as it was.
 template <bool Outline>
@@ -37,15 +45,13 @@ Evaluation evaluate(const Model& m, int blockB, int localFeature, Vec2 centre, d
       if (s < d - slack) out.step = -1;
       else if (s > vx.geometry[v].edgeLength - d + slack) out.step = +1;
     } else {
-      // A point corner has no region of its own: the edges on either side of it meet on the
-      // line through it along the mean of their normals, i.e. where the mean of their
-      // directions projects to zero. A rounded corner's arc starts d along the edge, as above.
+      // A point corner has no region of its own (pointCornerSide); a rounded corner's arc starts
+      // d along the edge, as above.
       const int w = vx.next[v];
       const bool pointBefore = vx.geometry[v].arcRadius == 0.0, pointAfter = vx.geometry[w].arcRadius == 0.0;
-      if (pointBefore ? dot(centre - a, e + vx.geometry[vx.prev[v]].edgeDirection) < -slack : s < d - slack)
+      if (pointBefore ? pointCornerSide(vx, v, centre) < -slack : s < d - slack)
         out.step = -1;
-      else if (pointAfter ? dot(centre - vx.geometry[w].position, e + vx.geometry[w].edgeDirection) > slack
-                          : s > vx.geometry[v].edgeLength - d + slack)
+      else if (pointAfter ? pointCornerSide(vx, w, centre) > slack : s > vx.geometry[v].edgeLength - d + slack)
         out.step = +1;
     }
     const double h = dot(centre - a, nOut);
@@ -54,9 +60,9 @@ Evaluation evaluate(const Model& m, int blockB, int localFeature, Vec2 centre, d
   }
   if (Outline && vx.geometry[v].arcRadius == 0.0) {
     // A point corner is never the feature: a walk passes through it to the edge on the centre's
-    // side of the dividing line (the same test as the edges'). As a feature it would claim
-    // centres inside B too, and report a gap where the corner overlaps.
-    out.step = dot(centre - vx.geometry[v].position, vx.geometry[vx.prev[v]].edgeDirection + vx.geometry[v].edgeDirection) < 0.0 ? -1 : +1;
+    // side. As a feature it would claim centres inside B too, and report a gap where the corner
+    // overlaps.
+    out.step = pointCornerSide(vx, v, centre) < 0.0 ? -1 : +1;
     return out;
   }
   const Vec2 o = vx.geometry[v].arcCentre;
@@ -221,13 +227,6 @@ BlockPoint featurePoint(const Model& m, const FeatureHit& hit, Vec2 where) {
   }
   const VertexGeometry& e = vx.geometry[hit.feature];
   const double along = std::clamp(dot(where - e.position, e.edgeDirection) / e.edgeLength, 0.0, 1.0);
-  // The first weight must be positive (it marks the deformable block): a point at the far end
-  // is that end's alone.
-  if (along >= 1.0) {
-    p.gridpoint[0] = vx.gridpoint[vx.next[hit.feature]];
-    p.weight[0] = 1.0;
-    return p;
-  }
   p.gridpoint[0] = g;
   p.weight[0] = 1.0 - along;
   p.gridpoint[1] = vx.gridpoint[vx.next[hit.feature]];

@@ -38,11 +38,12 @@ FeatureHit followFeature(const Model& model, int corner, int blockB, int feature
 double contactLength(const Model& model, int corner, const FeatureHit& hit, bool onOutline);
 
 // Where a contact acts on a deformable block: one gridpoint (a corner of its outline), or the
-// two ends of an outline edge in proportion to a point's place along it (1.3.3.4.2). A first
-// weight of 0 marks a rigid block.
+// two ends of an outline edge in proportion to a point's place along it (1.3.3.4.2). No
+// gridpoint: a rigid block.
 struct BlockPoint {
   int gridpoint[2] = {-1, -1};
   double weight[2] = {0.0, 0.0};
+  bool onGridpoints() const { return gridpoint[0] >= 0; }
 };
 // The gridpoint of A's corner, if A is deformable.
 BlockPoint cornerPoint(const Model& model, int corner);

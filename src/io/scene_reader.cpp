@@ -489,6 +489,10 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
       r.fail("quantity", "unknown quantity '" + quantity + "'; known: " + known);
     }
     h.quantity = info->quantity;
+    const bool zoneMean = h.quantity == HistoryQuantity::MeanSxx || h.quantity == HistoryQuantity::MeanSyy ||
+                          h.quantity == HistoryQuantity::MeanSxy;
+    if (zoneMean && m.zones.size() == 0)
+      r.fail("quantity", quantity + " averages the stress of the zones, and the scene has no deformable block");
     if (info->subject == HistorySubject::Block) {
       h.block = blockIndex(r, "block", r.string("block"));
       if (m.blocks.deformable[h.block])

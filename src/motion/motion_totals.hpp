@@ -1,6 +1,7 @@
 #pragma once
 // What a motion stage (rigid blocks or gridpoints) reports of one step, summed the same way for
-// both so that the cycle adds them without knowing which produced them.
+// both so that the cycle adds them without knowing which produced them; and the local damping
+// force both stages apply.
 #include <algorithm>
 #include <cmath>
 
@@ -19,7 +20,7 @@ inline double localDampingForce(double alphaLocal, double force, double velocity
 struct MotionStepTotals {
   double kineticEnergy = 0.0;       // time-centred: mean of the energies at t - dt/2 and t + dt/2
   double externalWork = 0.0;        // by gravity, applied loads, tractions and drivers over the step
-  double dampingDissipation = 0.0;  // by mass damping over the step: alpha m vbar^2 dt
+  double dampingDissipation = 0.0;  // by mass damping (alpha m vbar^2 dt) or local damping (-F_d vbar dt)
   double largestUnbalancedForce = 0.0;
   double largestDisplacement = 0.0; // of any vertex or gridpoint over the step (bounds contact detection)
   double dampingPower = 0.0;        // sum m vbar^2 (times alpha: the power mass damping absorbs; 1.3-23)

@@ -575,4 +575,13 @@ every = 1000
   ASSERT_EQ(r.histories.size(), 2u);
   EXPECT_NEAR(r.histories[0].value.back(), -kPressure, 2e-5 * kPressure);
   EXPECT_NEAR(r.histories[1].value.back(), 0.0, 2e-5 * kPressure);
+  // Without zones there is nothing to average: an error naming the key.
+  try {
+    sceneFromText(vdec::testing::blockOnBase() + "[[history]]\nname = \"s\"\nquantity = \"model.mean_syy\"\n", "rigid-mean");
+    FAIL() << "a mean zone stress history without zones was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("key 'history[0].quantity': model.mean_syy averages the stress of the zones"),
+              std::string::npos)
+        << e.what();
+  }
 }
