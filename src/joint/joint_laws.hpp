@@ -56,6 +56,25 @@ inline double cyNormalStressOfClosure(const JointMaterial& j, double closure) {
   return std::pow(std::pow(knee, 1.0 - e) + a * (1.0 - e) * beyond, 1.0 / (1.0 - e));
 }
 
+// The closure at which the loading curve reaches normal stress sn: the inverse of
+// cyNormalStressOfClosure (negative stress, an open joint, on the zero-stress slope).
+inline double cyClosureOfNormalStress(const JointMaterial& j, double sn) {
+  const double knee = cyKneeStress(j);
+  if (sn <= knee) return sn / j.kn;
+  const double a = j.knCoefficient, e = j.knExponent, kneeClosure = knee / j.kn;
+  if (e == 1.0) return kneeClosure + std::log(sn / knee) / a;
+  return kneeClosure + (std::pow(sn, 1.0 - e) - std::pow(knee, 1.0 - e)) / (a * (1.0 - e));
+}
+
+// The normal spring is elastic with one curve, so a closure increment moves the stress along the
+// curve exactly: stress -> closure, add the increment, closure -> stress. Integrating
+// kn(sn) dun with the stiffness of the start of the step instead (forward Euler) falls behind
+// the curve on loading by O(dun) per step, and under a dead load, where equilibrium fixes the
+// stress, the closure then ends 5 to 17 % beyond the curve's at the default FRAC.
+inline double cyNormalStressAfter(const JointMaterial& j, double sn, double closureIncrement) {
+  return cyNormalStressOfClosure(j, cyClosureOfNormalStress(j, sn) + closureIncrement);
+}
+
 // One step of the continuously yielding law. The joint has no tensile strength and no
 // cohesion. Shear follows dtau = F ks dus (1.4-138) with F = (1 - tau/tau_m) / (1 - r)
 // (1.4-140) towards the bounding strength tau_m = sn tan(phi_eff) sign(dus) (1.4-141); r is
@@ -73,7 +92,7 @@ inline double cyNormalStressOfClosure(const JointMaterial& j, double closure) {
 // while tau still has the old sign).
 inline double updateContinuouslyYielding(const JointMaterial& j, Contact& c, YieldingState& y, double dun,
                                          double dus) {
-  c.elasticNormalStress += cyNormalStiffness(j, std::max(c.elasticNormalStress, 0.0)) * dun;
+  c.elasticNormalStress = cyNormalStressAfter(j, c.elasticNormalStress, dun);
   c.slipping = false;
   c.open = c.elasticNormalStress < 0.0;
   if (c.open) {
@@ -105,7 +124,7 @@ inline double updateContinuouslyYielding(const JointMaterial& j, Contact& c, Yie
   double dilationWork = 0.0;
   if (dilationAngle > 0.0) {
     const double opening = std::tan(dilationAngle) * plastic;
-    c.elasticNormalStress += cyNormalStiffness(j, sn) * opening;
+    c.elasticNormalStress = cyNormalStressAfter(j, c.elasticNormalStress, opening);
     dilationWork = sn * opening;
   }
   c.slipping = plastic > 0.0;

@@ -232,6 +232,28 @@ TEST(JointLaws, ContinuouslyYieldingDilatesWithThePlasticShearAboveTheBasicFrict
   EXPECT_EQ(low.shearStress, 0.0);
 }
 
+TEST(JointLaws, ContinuouslyYieldingNormalStressStaysOnItsCurveWhateverTheStep) {
+  VDEC_REQUIREMENTS("REQ-JOINT-008");
+  JointMaterial j = continuouslyYielding();
+  // kn = 1e6 sn^0.5 or 1e3 sn: both overtake kn0 at 1 MPa, after 1 mm of closure.
+  for (const auto& [an, en] : {std::pair{1e6, 0.5}, std::pair{1e3, 1.0}}) {
+    j.knCoefficient = an;
+    j.knExponent = en;
+    // One step across the knee and far beyond, then back in two steps past zero (open), and
+    // closed again: every state lies on the loading curve of the closure reached.
+    auto [c, y] = cyContactAt(j, 0.0);
+    double closure = 0.0;
+    for (const double dun : {4e-3, -1.5e-3, -3.0e-3, 0.7e-3, 2e-3}) {
+      updateContinuouslyYielding(j, c, y, dun, 0.0);
+      closure += dun;
+      EXPECT_NEAR(c.elasticNormalStress, cyNormalStressOfClosure(j, closure),
+                  1e-12 * std::abs(cyNormalStressOfClosure(j, closure)) + 1e-6)
+          << "en " << en << " closure " << closure;
+      EXPECT_NEAR(cyClosureOfNormalStress(j, c.elasticNormalStress), closure, 1e-15 + 1e-12 * std::abs(closure));
+    }
+  }
+}
+
 TEST(JointLaws, ContinuouslyYieldingNormalStiffnessGrowsAsAPowerOfTheNormalStress) {
   VDEC_REQUIREMENTS("REQ-JOINT-008");
   JointMaterial j = continuouslyYielding();
