@@ -266,6 +266,66 @@ void ContactDetection::initialise(Model& m) {
   }
 }
 
+void ContactDetection::checkStepReach(const Model& m, double dt, double largestStepDisplacement) {
+  // A pair the last scan saw more than the tolerance apart can close at most the tolerance, plus
+  // twice one step's relative displacement s, before it is scanned again (update's bound
+  // overshoots by one step), so an unseen contact appears with an overlap of at most 2 s. While
+  // 2 s stays within d / 2 such a contact is an ordinary one, and beyond that the overlap stop
+  // fires, since a corner no more than d / 2 inside a block (every edge is longer than 2 d) is
+  // still nearest the face it came through. Past it, a corner can end nearer the far face and be
+  // pushed on through, or beyond the block altogether, and the contact is lost without a trace.
+  const double limit = 0.25 * m.roundingLength;
+  if (largestStepDisplacement <= 0.5 * limit) return;  // no pair can reach 2 x that
+  const Blocks& bl = m.blocks;
+  const int n = bl.size();
+  // Per block: a translation shared by every point (rigid blocks) and a spread on top of it
+  // (rotation, or a deformable block's largest gridpoint motion), so that blocks moving together
+  // do not count as approaching.
+  std::vector<Vec2> translation(n);
+  std::vector<double> spread(n, 0.0);
+  for (int b = 0; b < n; ++b)
+    if (!bl.deformable[b]) {
+      translation[b] = dt * bl.velocity[b];
+      spread[b] = std::abs(bl.angularVelocity[b]) * dt * bl.boundingRadius[b];
+    }
+  for (int i = 0; i < m.gridpoints.size(); ++i) {
+    const int b = m.gridpoints.block[i];
+    spread[b] = std::max(spread[b], norm(m.gridpoints.velocity[i]) * dt);
+  }
+  std::vector<double> minX(n, INFINITY), maxX(n, -INFINITY), minY(n, INFINITY), maxY(n, -INFINITY);
+  for (int v = 0; v < m.vertices.size(); ++v) {
+    const int b = m.vertices.block[v];
+    const Vec2 p = m.vertices.geometry[v].position;
+    minX[b] = std::min(minX[b], p.x);
+    maxX[b] = std::max(maxX[b], p.x);
+    minY[b] = std::min(minY[b], p.y);
+    maxY[b] = std::max(maxY[b], p.y);
+  }
+  // A pair can pass the limit only if one of its blocks moved half of it.
+  std::vector<char> fast(n);
+  for (int b = 0; b < n; ++b) fast[b] = norm(translation[b]) + spread[b] > 0.5 * limit;
+  for (int a = 0; a < n; ++a) {
+    if (!fast[a]) continue;
+    for (int b = 0; b < n; ++b) {
+      if (b == a || (fast[b] && b < a)) continue;  // a fast pair is judged once
+      const double relative = norm(translation[a] - translation[b]) + spread[a] + spread[b];
+      if (relative <= limit) continue;
+      // Within reach: the boxes of where the two were and are, apart by less than the tolerance.
+      const double reach = relative + m.contactTolerance;
+      if (minX[a] > maxX[b] + reach || minX[b] > maxX[a] + reach || minY[a] > maxY[b] + reach || minY[b] > maxY[a] + reach)
+        continue;
+      std::ostringstream s;
+      s << "blocks '" << bl.name[a] << "' and '" << bl.name[b] << "' moved " << relative
+        << " m relative to each other in the step to cycle " << m.cycle << ", time " << m.time
+        << " s, within reach of each other: more than a quarter of the rounding length (" << limit
+        << " m), the most one step may carry a corner towards a face if no contact is to be crossed unseen. The step ("
+        << dt << " s) is too long for the speed reached: lower solver.frac, raise the joint stiffness (the step "
+        << "shrinks with its square root), raise model.rounding, or make thin blocks thicker.";
+      throw InstabilityError(s.str());
+    }
+  }
+}
+
 void ContactDetection::measureDisplacements(const Model& m) {
   // A vertex of a rigid block is displaced by at most |dc| + |dtheta| R: the centroid's move
   // plus the chord of the rotation about it; a deformable block by its gridpoints' largest.

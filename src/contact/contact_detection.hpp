@@ -19,6 +19,11 @@ class ContactDetection {
   void initialise(Model& model);
   // Called once per step with the largest vertex displacement of that step.
   void update(Model& model, double largestStepDisplacement);
+  // Stops the run (InstabilityError) when, in the step just taken, two blocks within reach of
+  // each other moved more than a quarter of the rounding length relative to each other: then a
+  // corner could have crossed a face, or a thin block, between two scans or two evaluations
+  // without any overlap ever being seen. Cheap unless some vertex moved that far.
+  void checkStepReach(const Model& model, double dt, double largestStepDisplacement);
   // Blocks to rescan at the next update whatever their motion.
   void requestRescan(const std::vector<int>& blocks) { requested_.insert(requested_.end(), blocks.begin(), blocks.end()); }
   int scans() const { return scans_; }

@@ -147,7 +147,10 @@ void Cycle::buildStages() {
   // rigid blocks no zones.
   if (hasContacts_) {
     stages_.push_back({"contact-detection", [this] {
-                         if (model_.cycle > 0) detection_.update(model_, largestStepDisplacement_);
+                         if (model_.cycle > 0) {
+                           detection_.checkStepReach(model_, dt_, largestStepDisplacement_);
+                           detection_.update(model_, largestStepDisplacement_);
+                         }
                          motionClock_ += largestStepDisplacement_;
                        }});
     stages_.push_back({"contact-forces", [this] {
