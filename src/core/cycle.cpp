@@ -97,6 +97,10 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     if (j.law != JointLaw::PointContact) stepStiffness_ = std::max({stepStiffness_, j.kn, j.ks});
   alpha_ = settings_.adaptiveDamping ? kAdaptiveStart / dt_ : settings_.massDamping;
 
+  // Driven velocities as the run starts, f(0) times the input, which the first history sample
+  // shows; every step then sets them to f(t + dt/2).
+  for (int b = 0; b < bl.size(); ++b)
+    if (!bl.deformable[b]) setDrivenVelocities(model_, b, model_.time);
   double scale = 0.0;
   for (int b = 0; b < bl.size(); ++b) {
     if (!bl.movesFreely(b)) continue;

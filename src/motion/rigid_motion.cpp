@@ -8,6 +8,17 @@
 
 namespace vdec {
 
+void setDrivenVelocities(Model& m, int b, double t) {
+  Blocks& bl = m.blocks;
+  const int h = bl.velocityHistory[b];
+  if (h < 0) return;
+  const double scale = m.timeFunctions[h](t);
+  const std::uint8_t driven = bl.driven[b];
+  if (driven & DriveX) bl.velocity[b].x = scale * bl.inputVelocity[b].x;
+  if (driven & DriveY) bl.velocity[b].y = scale * bl.inputVelocity[b].y;
+  if (driven & DriveRotation) bl.angularVelocity[b] = scale * bl.inputAngularVelocity[b];
+}
+
 MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha, double local) {
   MotionStepTotals totals;
   Blocks& bl = m.blocks;
@@ -38,13 +49,7 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha, double 
   for (int b = 0; b < bl.size(); ++b) {
     if (bl.deformable[b]) continue;
     const std::uint8_t driven = bl.driven[b];
-    if (const int h = bl.velocityHistory[b]; h >= 0) {
-      // The driven velocity of the half step about to be taken, v(t + dt/2).
-      const double scale = m.timeFunctions[h](m.time + 0.5 * dt);
-      if (driven & DriveX) bl.velocity[b].x = scale * bl.inputVelocity[b].x;
-      if (driven & DriveY) bl.velocity[b].y = scale * bl.inputVelocity[b].y;
-      if (driven & DriveRotation) bl.angularVelocity[b] = scale * bl.inputAngularVelocity[b];
-    }
+    setDrivenVelocities(m, b, m.time + 0.5 * dt);  // v(t + dt/2), of the half step about to be taken
     const double mass = bl.mass[b];
     const Vec2 body = mass * m.gravity + bl.appliedForce[b];
     double unbalanced = 0.0;

@@ -6,6 +6,9 @@
 
 namespace vdec {
 
+// Sets block b's driven components to their velocity scaled by its velocity history at time t
+// (nothing without a history).
+void setDrivenVelocities(Model& model, int b, double t);
 
 // Advances every block by one step: free degrees of freedom by 1.3-21 (translation and
 // rotation damped alike), driven ones at their prescribed velocity. Clears the force sums.

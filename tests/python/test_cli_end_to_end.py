@@ -104,3 +104,23 @@ def test_run_that_reaches_its_limit_before_the_ratio_says_so(tmp_path):
     assert done.returncode == 0, done.stderr
     assert results["run"]["stop_reason"] == "cycles" and results["run"]["cycles"] == 50
     assert "warning: stopped on cycles before the unbalanced-force ratio fell to 1e-12" in done.stderr
+
+
+@pytest.mark.requirements("REQ-MOTION-003")
+def test_first_history_sample_of_a_driven_block_shows_its_velocity_history_at_time_zero(tmp_path):
+    # sin(2 pi 2 t) is 0 at t = 0: the block starts at rest and the first sample must say so,
+    # not the unscaled velocity of the scene.
+    text = (ROOT / "verification/problems/RB-REST-SETTLE/scene.toml").read_text().replace(
+        'name = "top"\nmaterial = "rock"\n',
+        'name = "top"\nmaterial = "rock"\nfix = ["x"]\nvelocity = [1e-3, 0.0]\n'
+        'velocity_history = { kind = "sine", frequency = 2.0 }\n')
+    text += '[[history]]\nname = "vx"\nquantity = "block.velocity_x"\nblock = "top"\nevery = 10\n'
+    done, results = run(tmp_path, text, "--set", "stop.time=0.01")
+    assert done.returncode == 0, done.stderr
+    h = results["histories"]["vx"]
+    assert h["t"][0] == 0.0 and h["value"][0] == 0.0
+    # Later samples: the velocity of the half step just taken, 1e-3 sin(2 pi 2 (t - dt/2)).
+    import math
+    dt = results["run"]["dt"]
+    for t, v in zip(h["t"][1:], h["value"][1:]):
+        assert v == pytest.approx(1e-3 * math.sin(2 * math.pi * 2.0 * (t - 0.5 * dt)), rel=1e-9)
