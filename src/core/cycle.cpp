@@ -36,6 +36,22 @@ constexpr double kAdaptiveTarget = 0.5;
 constexpr double kAdaptiveGain = 1.05;
 constexpr double kAdaptiveStart = 1e-4;
 constexpr double kAdaptiveMax = 1.0;
+// Motion reversing every step: the lag-one correlation of the velocities, L / K = cos(theta) for
+// a single mode advancing theta per step, below this (theta > 120 degrees, w dt > sqrt(3)).
+constexpr double kReversingCorrelation = -0.5;
+// Its kinetic energy is watched until damping would have taken a mode of ordinary frequency down
+// by e^-4, and over at least kReversingMinimumSteps steps; if it has kept half of it instead,
+// the integration is feeding it. The step count matters under heavy damping: mass damping acts
+// on the mid-step velocity, which a mode just below the critical step nearly cancels, so such a
+// stable mode decays slowly, by 1 - |lambda| per step; over 200 steps only modes within about
+// 0.05 % of the critical step (in FRAC) decay too slowly to tell from a fed one.
+constexpr double kReversingDampingExponent = 4.0;
+constexpr long long kReversingMinimumSteps = 200;
+constexpr double kReversingKept = 0.5;
+constexpr int kReversingPause = 20;
+// Below this share of the largest energy supplied, motion is round-off, whose sign pattern means
+// nothing.
+constexpr double kReversingFloor = 1e-10;
 }  // namespace
 
 Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histories)
@@ -219,6 +235,7 @@ void Cycle::finishStep() {
   energy_.externalWork += t.externalWork;
   lastExternalWork_ = t.externalWork;
   energy_.dampingDissipation += t.dampingDissipation;
+  checkReversingMotion(t);
   if (settings_.adaptiveDamping) adaptDamping(t);
   model_.time += dt_;
   ++model_.cycle;
@@ -273,6 +290,49 @@ void Cycle::checkEnergy() {
     s << ", or check for a joint stiffness far above the others.";
     throw InstabilityError(s.str());
   }
+}
+
+void Cycle::checkReversingMotion(const StepTotals& t) {
+  // Just above the critical step (0.1 to 3 % in FRAC on a stack of blocks) the highest mode
+  // grows, contacts that open and slip clip it, and damping takes what it gains: the blocks
+  // chatter, the mechanical energy stays below the monitor's bound, and the run ends wrong. That
+  // mode is the step's Nyquist motion, reversing every step; a stable mode so fast decays under
+  // damping, an unstable one is fed. So, while the motion reverses, watch its kinetic energy.
+  ReversingWindow& w = reversing_;
+  const bool reversing = t.kineticEnergy > kReversingFloor * largestSupplied_ &&
+                         t.kineticLag < kReversingCorrelation * t.kineticEnergy;
+  const double damping = alpha_ * dt_ + settings_.localDamping;
+  if (damping <= 0.0) return;
+  if (!reversing) {
+    // Chatter on contacts that open and close reverses in bursts: a short pause keeps the window.
+    if (w.open && ++w.pause > kReversingPause) w.open = false;
+    return;
+  }
+  w.pause = 0;
+  if (!w.open) {
+    w = {true, t.kineticEnergy, 0.0, 0, 0};
+    return;
+  }
+  w.damping += damping;
+  ++w.steps;
+  if (w.damping < kReversingDampingExponent || w.steps < kReversingMinimumSteps) return;
+  if (t.kineticEnergy < kReversingKept * w.startEnergy) {
+    w = {true, t.kineticEnergy, 0.0, 0, 0};  // decaying as a stable mode does: watch on
+    return;
+  }
+  std::ostringstream s;
+  s << "numerical instability at cycle " << model_.cycle << ", time " << model_.time << " s: motion reversing "
+    << "every step (the step's highest frequency) has persisted under damping for " << w.steps << " steps, its kinetic "
+    << "energy going from " << w.startEnergy << " to " << t.kineticEnergy << " J/m where damping would have taken a "
+    << "stable mode below " << kReversingKept * w.startEnergy << ". The time step " << dt_ << " s is just above the "
+    << "stability limit of the stiffest ";
+  if (hasZones_)
+    s << "zone or contact: lower solver.zone_fraction (now " << settings_.zoneFraction << ") or solver.frac (now "
+      << settings_.frac << ")";
+  else
+    s << "contact: lower solver.frac (now " << settings_.frac << "; 0.1 is the usual value)";
+  s << ".";
+  throw InstabilityError(s.str());
 }
 
 void Cycle::checkStiffnessGrowth(const ContactStepTotals& t) const {

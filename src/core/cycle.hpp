@@ -101,6 +101,7 @@ class Cycle {
   void finishStep();
   void adaptDamping(const StepTotals& totals);
   void checkEnergy();
+  void checkReversingMotion(const StepTotals& totals);
   void checkStiffnessGrowth(const ContactStepTotals& totals) const;
   void recordHistories(bool initial);
   bool stopReached(std::string& reason) const;
@@ -127,6 +128,14 @@ class Cycle {
   double lastExternalWork_ = 0.0;
   StepTotals step_;
   bool hasZones_ = false, hasRigidBlocks_ = false, hasContacts_ = false;
+  // The window over which motion reversing every step is watched (checkReversingMotion).
+  struct ReversingWindow {
+    bool open = false;
+    double startEnergy = 0.0;  // kinetic energy when it opened
+    double damping = 0.0;      // the exponent by which damping would reduce an ordinary mode's energy since
+    long long steps = 0;
+    int pause = 0;  // steps since the motion last reversed
+  } reversing_;
   double alpha_ = 0.0;                       // mass damping in use, 1/s
   double servoPower_ = 0.0, servoRate_ = 0.0;
   double staticSolveSeconds_ = -1.0;

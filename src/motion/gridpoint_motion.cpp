@@ -67,6 +67,7 @@ MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha, double l
       const double ubar = 0.5 * (u0 + u1);
       t.dampingDissipation -= damping * ubar * dt;
       t.kineticEnergy += 0.25 * mass * (u0 * u0 + u1 * u1);
+      t.kineticLag += 0.5 * mass * u0 * u1;
       t.externalWork += bodyForce * u1 * dt;
       t.dampingDissipation += alpha * mass * ubar * ubar * dt;
       t.dampingPower += mass * ubar * ubar;

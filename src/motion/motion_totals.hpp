@@ -25,6 +25,9 @@ struct MotionStepTotals {
   double largestDisplacement = 0.0; // of any vertex or gridpoint over the step (bounds contact detection)
   double dampingPower = 0.0;        // sum m vbar^2 (times alpha: the power mass damping absorbs; 1.3-23)
   double kineticRate = 0.0;         // sum m vbar (v1 - v0) / dt, the rate of change of kinetic energy
+  // sum m v0 v1 / 2 over the free degrees of freedom: beside the kinetic energy (sum m (v0^2 +
+  // v1^2) / 4) it tells how much of the motion reverses every step (the step's Nyquist mode).
+  double kineticLag = 0.0;
   // The scale of the forces for the unbalanced-force ratio: a sum of magnitudes and its count
   // (closed contacts' forces, or the zone forces on free gridpoints).
   double forceScaleSum = 0.0;
@@ -38,6 +41,7 @@ struct MotionStepTotals {
     largestDisplacement = std::max(largestDisplacement, o.largestDisplacement);
     dampingPower += o.dampingPower;
     kineticRate += o.kineticRate;
+    kineticLag += o.kineticLag;
     forceScaleSum += o.forceScaleSum;
     forceCount += o.forceCount;
   }

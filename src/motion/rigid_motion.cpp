@@ -37,6 +37,7 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha, double 
     const double damping = localDampingForce(local, load, v0);
     const double v1 = keep * (lose * v0 + (dt / inertia) * (load + damping));
     totals.kineticEnergy += 0.25 * inertia * (v0 * v0 + v1 * v1);
+    totals.kineticLag += 0.5 * inertia * v0 * v1;
     // 1.3-21 is m (v1 - v0) / dt = F - alpha m vbar with vbar = (v0 + v1) / 2, so the kinetic
     // energy changes by F vbar dt - alpha m vbar^2 dt: the second term is what damping takes.
     const double vbar = 0.5 * (v0 + v1);
