@@ -253,3 +253,30 @@ TEST(SceneHardening, TableFilesThatAreDevicesOrTooLargeAreRefusedBeforeTheyAreRe
   std::filesystem::remove(dir / "huge.csv");
   std::filesystem::remove(dir / "rows.csv");
 }
+
+TEST(HistoryBound, AFullSeriesKeepsTheSamplesOfTheDoubledIntervalAndDoublesIt) {
+  VDEC_REQUIREMENTS("REQ-IO-006");
+  for (const bool atZero : {true, false}) {
+    // Sampled every 3 cycles with a limit of 8: sample k at cycle (k + first) * 3.
+    HistorySeries series;
+    series.every = 3;
+    series.sampledAtCycleZero = atZero;
+    const long long first = atZero ? 0 : 3;
+    std::vector<long long> halvedAt;
+    for (long long cycle = first; cycle <= 600; ++cycle) {
+      if (cycle % series.every != 0) continue;
+      if (appendHistorySample(series, 0.5 * static_cast<double>(cycle), static_cast<double>(cycle), 8))
+        halvedAt.push_back(cycle);
+      EXPECT_LT(series.t.size(), 8u);
+    }
+    EXPECT_EQ(series.halvings, static_cast<int>(halvedAt.size()));
+    EXPECT_EQ(series.every, 3LL << series.halvings);
+    ASSERT_GE(series.halvings, 3);
+    // What is kept is what sampling every `series.every` from the start records.
+    std::vector<double> expected;
+    for (long long cycle = atZero ? 0 : series.every; cycle <= 600; cycle += series.every)
+      expected.push_back(static_cast<double>(cycle));
+    EXPECT_EQ(series.value, expected) << (atZero ? "sampled at cycle 0" : "first sample at cycle every");
+    for (std::size_t k = 0; k < series.t.size(); ++k) EXPECT_EQ(series.t[k], 0.5 * series.value[k]);
+  }
+}
