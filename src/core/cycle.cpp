@@ -57,6 +57,7 @@ constexpr double kReversingFloor = 1e-10;
 Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histories)
     : model_(model), settings_(settings), historySpecs_(std::move(histories)) {
   histories_.resize(historySpecs_.size());
+  for (std::size_t i = 0; i < historySpecs_.size(); ++i) histories_[i].every = historySpecs_[i].every;
   const Blocks& bl = model_.blocks;
   hasZones_ = model_.zones.size() > 0;
   for (int b = 0; b < bl.size(); ++b) hasRigidBlocks_ = hasRigidBlocks_ || !bl.deformable[b];
@@ -363,14 +364,22 @@ void Cycle::recordHistories(bool initial) {
   // Before the first step joints have not been evaluated yet, so only blocks are sampled.
   for (std::size_t i = 0; i < historySpecs_.size(); ++i) {
     const HistorySpec& h = historySpecs_[i];
-    if (model_.cycle % h.every != 0) continue;
+    HistorySeries& series = histories_[i];
+    if (model_.cycle % series.every != 0) continue;
     const HistorySubject subject = findHistorySubject(h.quantity);
     // Positions are those just reached; zone stresses, joints and model measures were formed in
     // this step from the positions at its start.
     const bool block = subject == HistorySubject::Block || subject == HistorySubject::Gridpoint;
     if (initial && !block) continue;
-    histories_[i].t.push_back(block || initial ? model_.time : model_.time - dt_);
-    histories_[i].value.push_back(sampleHistory(model_, h, monitors_));
+    if (initial) series.sampledAtCycleZero = true;
+    const bool halved = appendHistorySample(series, block || initial ? model_.time : model_.time - dt_,
+                                            sampleHistory(model_, h, monitors_));
+    if (halved && series.halvings == 1)
+      std::fprintf(stderr, "%svdec: warning: history '%s' reached %zu samples at cycle %lld: it now keeps every "
+                   "other sample and samples every %lld cycles, doubling again each time it fills "
+                   "(results.json histories.%s.every); give it a larger every to choose the interval yourself\n",
+                   settings_.progress && isatty(STDERR_FILENO) ? "\n" : "", h.name.c_str(), kHistorySampleLimit,
+                   model_.cycle, series.every, h.name.c_str());
   }
 }
 

@@ -112,6 +112,27 @@ double meanZoneStress(const Model& m, const std::vector<double>& component) {
 
 }  // namespace
 
+bool appendHistorySample(HistorySeries& series, double t, double value, std::size_t limit) {
+  series.t.push_back(t);
+  series.value.push_back(value);
+  if (series.t.size() < limit) return false;
+  // Sample k was taken at cycle (k + first) * every, first = 0 when cycle 0 was sampled: keep the
+  // samples whose cycle is a multiple of 2 every.
+  const std::size_t first = series.sampledAtCycleZero ? 0 : 1;
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < series.t.size(); ++k) {
+    if ((k + first) % 2 != 0) continue;
+    series.t[kept] = series.t[k];
+    series.value[kept] = series.value[k];
+    ++kept;
+  }
+  series.t.resize(kept);
+  series.value.resize(kept);
+  series.every *= 2;
+  ++series.halvings;
+  return true;
+}
+
 double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) {
   const Blocks& b = m.blocks;
   switch (h.quantity) {

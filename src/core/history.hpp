@@ -1,6 +1,7 @@
 #pragma once
 // Histories: named time series of a block, a joint (all contacts between two blocks) or the
 // whole model, sampled every `every` cycles.
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -55,10 +56,23 @@ struct Monitors {
   double energyRatio = 0.0;  // mechanical energy / energy supplied
 };
 
+// The most samples a history keeps. A series that reaches it is halved, keeping the samples of
+// the cycles that are multiples of twice its interval, and samples at that doubled interval from
+// then on: a run of any length holds at most this many samples per history (16 bytes each), and
+// the series stays what a run with the doubled `every` would have recorded.
+inline constexpr std::size_t kHistorySampleLimit = 100000;
+
 struct HistorySeries {
   std::vector<double> t;
   std::vector<double> value;
+  long long every = 1;         // the interval in force: the scene's `every`, doubled at each halving
+  int halvings = 0;
+  bool sampledAtCycleZero = false;  // the first sample is that of cycle 0 (block and gridpoint quantities)
 };
+
+// Appends one sample, taken at a cycle that is a multiple of series.every; at `limit` samples
+// (even) halves the series as above and returns true.
+bool appendHistorySample(HistorySeries& series, double t, double value, std::size_t limit = kHistorySampleLimit);
 
 double sampleHistory(const Model& model, const HistorySpec& spec, const Monitors& monitors);
 

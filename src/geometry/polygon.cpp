@@ -78,6 +78,9 @@ void validateBlockPolygon(const Polygon& p, double d, const std::string& what) {
   const double area = signedArea(p);
   double longest = 0.0;
   for (std::size_t i = 0; i < n; ++i) longest = std::max(longest, norm(p[(i + 1) % n] - p[i]));
+  if (!std::isfinite(area) || !std::isfinite(longest))
+    throw GeometryError(what + ": its area or an edge length overflows (coordinates up to " + numberText(scale) +
+                        "): give the vertices in m, below about 1e150");
   if (std::abs(area) <= 1e-12 * longest * longest)
     throw GeometryError(what + ": polygon has zero area");
   if (area < 0)

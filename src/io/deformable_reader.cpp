@@ -1,6 +1,7 @@
 #include "io/deformable_reader.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -52,15 +53,14 @@ void readElasticConstants(TableReader& r, BlockMaterial& mat) {
     mat.bulk = r.positive("bulk");
     mat.shear = r.positive("shear");
   }
+  if (young && !(std::isfinite(mat.bulk) && std::isfinite(mat.shear)))
+    r.fail("young", "with poisson " + shown(r.number("poisson")) + " gives a bulk modulus of " + shown(mat.bulk) +
+                        " Pa, beyond the range of a double: lower young");
 }
 
 namespace {
 
-int positiveCount(TableReader& r, std::string_view key, int limit) {
-  const long long n = r.integer(key);
-  if (n < 1 || n > limit) r.fail(key, "must be an integer in [1, " + std::to_string(limit) + "], got " + std::to_string(n));
-  return static_cast<int>(n);
-}
+int positiveCount(TableReader& r, std::string_view key, int limit) { return static_cast<int>(r.integer(key, 1, limit)); }
 
 }  // namespace
 
@@ -110,6 +110,22 @@ std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& v
   return crossedQuadMesh({p[0], p[1], p[2], p[3]}, nx, ny);
 }
 
+void checkMassProperties(const Model& m, const std::string& where, int material, double area, double mass,
+                         double inertia) {
+  const BlockMaterial& mat = m.blockMaterials[material];
+  const std::string density = "block_material[" + std::to_string(material) + "].density";
+  if (!(std::isfinite(area) && area > 0.0))
+    throw SceneError(where + ": its area, " + shown(area) + " m^2, is not a finite positive number: the coordinates "
+                     "of its vertices are too large; give them in m, below about 1e150");
+  if (!(std::isfinite(mass) && mass > 0.0))
+    throw SceneError(where + ": its mass, " + density + " (" + shown(mat.density) + " kg/m^3) times its area (" +
+                     shown(area) + " m^2), is " + shown(mass) + " kg/m, not a finite positive number: lower " + density);
+  if (!(std::isfinite(inertia) && inertia >= 0.0))
+    throw SceneError(where + ": its moment of inertia, " + density + " (" + shown(mat.density) +
+                     " kg/m^3) times the polar second moment of its area, is " + shown(inertia) +
+                     " kg m, not a finite number: lower " + density + " or the size of the block");
+}
+
 void addDeformableBlock(Model& m, const std::string& name, int material, const Mesh& mesh) {
   Blocks& b = m.blocks;
   const int block = b.size();
@@ -122,6 +138,7 @@ void addDeformableBlock(Model& m, const std::string& name, int material, const M
     area += a;
     moment += (a / 3.0) * (p0 + p1 + p2);
   }
+  checkMassProperties(m, "block '" + name + "'", material, area, density * area, 0.0);
   const Vec2 c = (1.0 / area) * moment;
   b.name.push_back(name);
   b.material.push_back(material);
@@ -178,23 +195,13 @@ void addDeformableBlock(Model& m, const std::string& name, int material, const M
 namespace {
 
 std::array<double, 3> triple(TableReader& r, std::string_view key) {
-  const toml::node* n = r.node(key);
-  const toml::array* a = n ? n->as_array() : nullptr;
-  if (!a || a->size() != 3 || !(*a)[0].is_number() || !(*a)[1].is_number() || !(*a)[2].is_number())
-    r.fail(key, "must be an array of three numbers [sxx, syy, sxy]");
-  return {*(*a)[0].value<double>(), *(*a)[1].value<double>(), *(*a)[2].value<double>()};
+  const std::vector<double> v = r.numbers(key, 3, "must be an array of three numbers [sxx, syy, sxy]");
+  return {v[0], v[1], v[2]};
 }
 
 std::array<double, 4> quadruple(TableReader& r, std::string_view key) {
-  const toml::node* n = r.node(key);
-  const toml::array* a = n ? n->as_array() : nullptr;
-  if (!a || a->size() != 4) r.fail(key, "must be an array of four numbers [sxx, syy, sxy, szz]");
-  std::array<double, 4> out{};
-  for (int i = 0; i < 4; ++i) {
-    if (!(*a)[i].is_number()) r.fail(key, "must be an array of four numbers [sxx, syy, sxy, szz]");
-    out[i] = *(*a)[i].value<double>();
-  }
-  return out;
+  const std::vector<double> v = r.numbers(key, 4, "must be an array of four numbers [sxx, syy, sxy, szz]");
+  return {v[0], v[1], v[2], v[3]};
 }
 
 // A closed range [lo, hi] on a coordinate, or everything.
@@ -232,29 +239,73 @@ struct StressTable {
   }
 };
 
+// The fields of one line of a CSV table (commas or spaces between them).
+std::vector<std::string_view> csvFields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ',' || std::isspace(static_cast<unsigned char>(line[i])))) ++i;
+    const std::size_t begin = i;
+    while (i < line.size() && line[i] != ',' && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > begin) fields.push_back(line.substr(begin, i - begin));
+  }
+  return fields;
+}
+
+// A whole field as a number; from_chars also reads nan and inf, so that such rows are refused
+// as rows rather than skipped as headers.
+std::optional<double> csvNumber(std::string_view field) {
+  if (!field.empty() && field[0] == '+') field.remove_prefix(1);
+  double v = 0.0;
+  const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), v);
+  if (end != field.data() + field.size()) return std::nullopt;
+  if (error == std::errc::result_out_of_range) return INFINITY;
+  if (error != std::errc()) return std::nullopt;
+  return v;
+}
+
 // Rows of `columns` numbers from a CSV file beside the scene (named by `key` of `r`): a header
-// line and '#' comments are skipped, the first column must increase, two rows at least. Errors
-// name the table's key, the file and the line.
+// line (its first field a word, not nan or inf) and '#' comments are skipped, every value must be finite,
+// the first column must increase, two rows at least. The file must be a regular file of at most
+// kTableFileBytes and kTableRows rows, checked before it is read, so that a path to a device or
+// an endless file is an error and not a hang. Errors name the table's key, the file and the line.
 std::vector<std::vector<double>> readColumns(TableReader& r, std::string_view key, const std::string& scenePath,
                                              const std::string& columns, std::size_t count, std::string& file) {
   file = (std::filesystem::path(scenePath).parent_path() / r.string(key)).string();
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (!error && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    r.fail(key, "'" + file + "' is not a regular file (a device, pipe or directory): give a CSV file");
+  const std::uintmax_t bytes = std::filesystem::file_size(file, error);
+  if (!error && bytes > kTableFileBytes)
+    r.fail(key, "'" + file + "' has " + std::to_string(bytes) + " bytes, more than the limit of " +
+                    std::to_string(kTableFileBytes) + " for a table file: thin the table");
   std::ifstream in(file);
   if (!in) r.fail(key, "cannot open '" + file + "'");
   std::vector<std::vector<double>> rows;
   std::string line;
+  std::uintmax_t read = 0;
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
-    if (line.empty() || line[0] == '#' || std::isalpha(static_cast<unsigned char>(line[0]))) continue;  // header
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream text(line);
-    std::vector<double> row(count);
-    std::string extra;
-    for (double& v : row) text >> v;
-    if (!text || (text >> extra))
-      r.fail(key, file + ":" + std::to_string(number) + ": expected " + std::to_string(count) + " numbers: " + columns);
-    if (!rows.empty() && !(row[0] > rows.back()[0]))
-      r.fail(key, file + ":" + std::to_string(number) + ": the first column must increase");
+    read += line.size() + 1;
+    if (read > kTableFileBytes)  // the file grew while it was read
+      r.fail(key, file + ":" + std::to_string(number) + ": more than " + std::to_string(kTableFileBytes) + " bytes");
+    const std::vector<std::string_view> fields = csvFields(line);
+    if (fields.empty() || fields[0][0] == '#') continue;
+    if (std::isalpha(static_cast<unsigned char>(fields[0][0])) && !csvNumber(fields[0])) continue;  // header
+    const std::string at = file + ":" + std::to_string(number) + ": ";
+    if (fields.size() != count) r.fail(key, at + "expected " + std::to_string(count) + " numbers: " + columns);
+    std::vector<double> row;
+    for (std::string_view field : fields) {
+      const std::optional<double> v = csvNumber(field);
+      if (!v) r.fail(key, at + "expected " + std::to_string(count) + " numbers: " + columns);
+      if (!std::isfinite(*v)) r.fail(key, at + "'" + std::string(field) + "' is not a finite number");
+      row.push_back(*v);
+    }
+    if (!rows.empty() && !(row[0] > rows.back()[0])) r.fail(key, at + "the first column must increase");
+    if (rows.size() == kTableRows)
+      r.fail(key, at + "more than " + std::to_string(kTableRows) + " rows, the limit for a table file: thin the table");
     rows.push_back(std::move(row));
   }
   if (rows.size() < 2) r.fail(key, file + ": needs at least two rows");

@@ -2,6 +2,7 @@
 // The deformable-block part of a scene: elastic constants of block materials, zoned blocks
 // (a quadrilateral with `zoning`, or an `annulus`), [[boundary]] conditions on gridpoints and
 // boundary edges, and [initial_stress]. docs/user-manual/scene-format.md documents the keys.
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -22,9 +23,19 @@ void readPlasticity(TableReader& r, BlockMaterial& material, std::vector<std::st
 // `zoning = {...}` on a quadrilateral given by `vertices`; nullopt for a rigid block.
 std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& vertices);
 
+// A block's area, mass and moment of inertia as formed from its shape and its material's
+// density: a SceneError naming the block (`where`) and the density's key unless they are finite
+// and positive (a density of 1e308 times an area overflows).
+void checkMassProperties(const Model& model, const std::string& where, int material, double area, double mass,
+                         double inertia);
+
 // Adds a deformable block: its gridpoints and zones, and an entry in Blocks (no contact
 // vertices). Throws GeometryError naming the block for degenerate zones.
 void addDeformableBlock(Model& model, const std::string& name, int material, const Mesh& mesh);
+
+// Limits of a CSV table file (a `table` history or a `stress_table`), checked before it is read.
+inline constexpr std::uintmax_t kTableFileBytes = 64u << 20;
+inline constexpr std::size_t kTableRows = 1000000;
 
 // A time history table under `key`, e.g. history = { kind = "sine", frequency = 10.0 }.
 TimeFunction readHistory(TableReader& r, const std::string& scenePath, std::string_view key);

@@ -132,7 +132,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
   json histories = json::object();
   // The specs are in the scene; the series are in the report, in the same order.
   for (std::size_t i = 0; i < scene.histories.size() && i < report.histories.size(); ++i)
-    histories[scene.histories[i].name] = {{"t", report.histories[i].t}, {"value", report.histories[i].value}};
+    histories[scene.histories[i].name] = {
+        {"t", report.histories[i].t}, {"value", report.histories[i].value}, {"every", report.histories[i].every}};
   j["histories"] = histories;
   json blocks = json::array();
   for (int b = 0; b < m.blocks.size(); ++b) {

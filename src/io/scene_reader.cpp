@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -117,6 +118,7 @@ void addBlock(Model& m, const BlockInput& in) {
   const double area = signedArea(in.polygon);
   const Vec2 c = centroid(in.polygon);
   const double density = m.blockMaterials[in.material].density;
+  checkMassProperties(m, in.where, in.material, area, density * area, density * polarSecondMoment(in.polygon));
   Blocks& b = m.blocks;
   b.name.push_back(in.name);
   b.material.push_back(in.material);
@@ -515,11 +517,7 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
       if (h.gridpoint < 0 && h.zone < 0)
         r.fail("point", "is not inside block '" + m.blocks.name[h.block] + "': a zone history samples the zone that holds the point");
     }
-    if (r.has("every")) {
-      const long long every = r.integer("every");
-      if (every < 1) r.fail("every", "must be >= 1");
-      h.every = static_cast<int>(every);
-    }
+    if (r.has("every")) h.every = static_cast<int>(r.integer("every", 1, std::numeric_limits<int>::max()));
     r.finish();
     scene.histories.push_back(h);
   }

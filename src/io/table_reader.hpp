@@ -68,9 +68,7 @@ class TableReader {
     const toml::node* n = node(key);
     if (!n) fail(key, "is required");
     if (!n->is_number()) fail(key, "must be a number");
-    const double v = *n->value<double>();
-    if (!std::isfinite(v)) fail(key, "must be finite");
-    return v;
+    return finiteNumber(*n, key, "");
   }
   double number(std::string_view key, double fallback) { return has(key) ? number(key) : fallback; }
   double positive(std::string_view key) {
@@ -94,6 +92,14 @@ class TableReader {
     if (!n->is_integer()) fail(key, "must be an integer");
     return *n->value<long long>();
   }
+  // An integer checked against its range before it is narrowed or used as a divisor: a value
+  // past the range must be refused here, not wrapped (every = 4294967296 once became 0).
+  long long integer(std::string_view key, long long lo, long long hi) {
+    const long long v = integer(key);
+    if (v < lo || v > hi)
+      fail(key, "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
+    return v;
+  }
   std::string string(std::string_view key) {
     const toml::node* n = node(key);
     if (!n) fail(key, "is required");
@@ -109,12 +115,21 @@ class TableReader {
   }
   Vec2 vec2(std::string_view key, Vec2 fallback) { return has(key) ? vec2(key) : fallback; }
   Vec2 vec2(std::string_view key) {
+    const std::vector<double> v = numbers(key, 2, "must be an array of two numbers, e.g. [0.0, 1.0]");
+    return {v[0], v[1]};
+  }
+  // An array of exactly `count` finite numbers; `shape` is the message for any other value.
+  std::vector<double> numbers(std::string_view key, std::size_t count, const std::string& shape) {
     const toml::node* n = node(key);
     if (!n) fail(key, "is required");
     const toml::array* a = n->as_array();
-    if (!a || a->size() != 2 || !(*a)[0].is_number() || !(*a)[1].is_number())
-      fail(key, "must be an array of two numbers, e.g. [0.0, 1.0]");
-    return {*(*a)[0].value<double>(), *(*a)[1].value<double>()};
+    if (!a || a->size() != count) fail(key, shape);
+    std::vector<double> out;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!(*a)[i].is_number()) fail(key, shape);
+      out.push_back(finiteNumber((*a)[i], key, "value " + std::to_string(i)));
+    }
+    return out;
   }
   Polygon polygon(std::string_view key) {
     const toml::node* n = node(key);
@@ -124,9 +139,10 @@ class TableReader {
     Polygon p;
     for (const toml::node& point : *a) {
       const toml::array* xy = point.as_array();
+      const std::string which = "point " + std::to_string(p.size());
       if (!xy || xy->size() != 2 || !(*xy)[0].is_number() || !(*xy)[1].is_number())
-        fail(key, "must be an array of [x, y] points; point " + std::to_string(p.size()) + " is not");
-      p.push_back({*(*xy)[0].value<double>(), *(*xy)[1].value<double>()});
+        fail(key, "must be an array of [x, y] points; " + which + " is not");
+      p.push_back({finiteNumber((*xy)[0], key, which + " x"), finiteNumber((*xy)[1], key, which + " y")});
     }
     return p;
   }
@@ -170,6 +186,18 @@ class TableReader {
   const std::string& file() const { return file_; }
 
  private:
+  // Every number of a scene passes here: TOML's nan, inf and -inf are refused where they are
+  // read, naming the line of the value itself and, inside an array, which of its values
+  // (`element`, e.g. "point 2 x"). An integer is rounded to the nearest double (toml++ would
+  // refuse one that a double does not hold exactly).
+  double finiteNumber(const toml::node& n, std::string_view key, const std::string& element) const {
+    const double v = n.is_integer() ? static_cast<double>(n.as_integer()->get()) : n.as_floating_point()->get();
+    if (!std::isfinite(v))
+      throw SceneError(where(n.source()) + ": key '" + qualified(key) + "': " + (element.empty() ? "" : element + " ") +
+                       "must be finite, got " + shown(v));
+    return v;
+  }
+
   const toml::table& table_;
   std::string prefix_;
   std::string file_;

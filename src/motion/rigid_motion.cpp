@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "contact/contact_geometry.hpp"
 #include "core/errors.hpp"
@@ -96,7 +97,16 @@ double rigidBlockTimeStep(const Model& m, double frac) {
     maxStiffness = std::max(maxStiffness, j.law == JointLaw::PointContact ? k : k * longestEdge);
   }
   if (maxStiffness <= 0.0) throw SceneError("the scene has no joint material: define at least one [[joint_material]]");
-  return frac * 2.0 * std::sqrt(minMass / maxStiffness);  // 1.3-28
+  const double dt = frac * 2.0 * std::sqrt(minMass / maxStiffness);  // 1.3-28
+  if (!(std::isfinite(dt) && dt > 0.0)) {
+    std::ostringstream s;
+    s << "the rigid-block time step (1.3-28) from the smallest free block mass " << minMass
+      << " kg/m and the largest joint stiffness " << maxStiffness << " N/m (kn or ks times the longest edge, "
+      << longestEdge << " m) is " << dt << " s: lower [[joint_material]] kn and ks, or the block density, so that "
+      << "both and their ratio are finite";
+    throw SceneError(s.str());
+  }
+  return dt;
 }
 
 }  // namespace vdec

@@ -72,6 +72,18 @@ void prepareZones(Model& m) {
             point + perLength * std::max(vx.geometry[v].edgeLength + vx.geometry[vx.prev[v]].edgeLength,
                                          2.0 * m.roundingLength);
   }
+  // The masses and stiffnesses the zone step is formed from (1.3-26): a density or modulus near the
+  // largest double overflows here, and must be named rather than reach the step as inf or NaN.
+  for (int i = 0; i < count; ++i) {
+    if (std::isfinite(g.gravityMass[i]) && g.gravityMass[i] > 0.0 && std::isfinite(g.stiffness[i])) continue;
+    const int material = m.blocks.material[g.block[i]];
+    std::ostringstream s;
+    s << "gridpoint at (" << g.position[i].x << ", " << g.position[i].y << ") of block '" << m.blocks.name[g.block[i]]
+      << "': its mass " << g.gravityMass[i] << " kg/m and stiffness " << g.stiffness[i]
+      << " N/m (1.3-26) are not both finite and positive: lower block_material[" << material
+      << "].density, its elastic moduli, or the joint stiffness kn and ks";
+    throw SceneError(s.str());
+  }
   g.mass = g.gravityMass;
   // Gridpoint -> (zone, corner) slots, in zone order: the gather order is fixed.
   GridpointZones& gz = m.gridpointZones;

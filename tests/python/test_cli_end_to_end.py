@@ -124,3 +124,49 @@ def test_first_history_sample_of_a_driven_block_shows_its_velocity_history_at_ti
     dt = results["run"]["dt"]
     for t, v in zip(h["t"][1:], h["value"][1:]):
         assert v == pytest.approx(1e-3 * math.sin(2 * math.pi * 2.0 * (t - 0.5 * dt)), rel=1e-9)
+
+FALLING_BLOCK = """
+[model]
+gravity = [0.0, -9.81]
+rounding = 0.01
+[stop]
+cycles = 250001
+[[block_material]]
+name = "rock"
+density = 2500.0
+[[joint_material]]
+name = "joint"
+kn = 1e9
+ks = 1e9
+[[block]]
+name = "b"
+material = "rock"
+vertices = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+[[history]]
+name = "y"
+quantity = "block.y"
+block = "b"
+[[history]]
+name = "ke"
+quantity = "model.kinetic_energy"
+"""
+
+
+@pytest.mark.requirements("REQ-IO-006")
+def test_histories_longer_than_the_sample_limit_are_halved_to_what_a_doubled_every_records(tmp_path):
+    # 250001 cycles sampled every cycle: 100000 samples (the limit) halve the series to every 2,
+    # then again to every 4; what is left must be exactly the run sampled every 4 from the start.
+    done, every_cycle = run(tmp_path, FALLING_BLOCK)
+    assert done.returncode == 0, done.stderr
+    for name, cycle in (("y", 99999), ("ke", 100000)):
+        assert (f"vdec: warning: history '{name}' reached 100000 samples at cycle {cycle}: it now keeps every other "
+                f"sample and samples every 2 cycles") in done.stderr
+    text = FALLING_BLOCK.replace('block = "b"\n', 'block = "b"\nevery = 4\n') + "every = 4\n"
+    done, every_fourth = run(tmp_path, text)
+    assert done.returncode == 0, done.stderr
+    assert "warning" not in done.stderr
+    for name, count in (("y", 62501), ("ke", 62500)):
+        halved, direct = every_cycle["histories"][name], every_fourth["histories"][name]
+        assert halved["every"] == 4 and direct["every"] == 4
+        assert len(halved["t"]) == count
+        assert halved["t"] == direct["t"] and halved["value"] == direct["value"]
