@@ -9,6 +9,13 @@ double totalArea(const std::vector<Polygon>& blocks) {
   for (const auto& b : blocks) a += signedArea(b);
   return a;
 }
+JointSetSpec jointSet(double angleDeg, double spacing, double spacingVariation = 0.0) {
+  JointSetSpec set;
+  set.angleDeg = angleDeg;
+  set.spacing = spacing;
+  set.spacingVariation = spacingVariation;
+  return set;
+}
 RegionSpec square(double size) {
   RegionSpec r;
   r.name = "r";
@@ -30,12 +37,7 @@ TEST(BlockCutting, CrackAcrossTheRegionSplitsItAndPartialCrackDoesNot) {
 TEST(BlockCutting, OrthogonalJointSetsMakeAGridOfEqualBlocks) {
   VDEC_REQUIREMENTS("REQ-GEOM-003");
   RegionSpec r = square(4.0);
-  JointSetSpec horizontal;
-  horizontal.angleDeg = 0.0;
-  horizontal.spacing = 1.0;
-  JointSetSpec vertical = horizontal;
-  vertical.angleDeg = 90.0;
-  r.jointSets = {horizontal, vertical};
+  r.jointSets = {jointSet(0.0, 1.0), jointSet(90.0, 1.0)};
   const auto blocks = cutRegion(r);
   ASSERT_EQ(blocks.size(), 16u);
   for (const auto& b : blocks) EXPECT_NEAR(signedArea(b), 1.0, 1e-12);
@@ -108,20 +110,12 @@ TEST(BlockCutting, TheGridCutterGivesThePiecesOfCuttingEveryBlockInTheSameOrder)
       r.seed = seed;
       r.cracks.push_back({{-10, 3}, {70, 9}});
       r.cracks.push_back({{10, -10}, {12, 8}});  // ends inside
-      JointSetSpec a;
-      a.angleDeg = 30.0;
+      JointSetSpec a = jointSet(30.0, 1.3, 0.4);
       a.angleVariationDeg = 3.0;
-      a.spacing = 1.3;
-      a.spacingVariation = 0.4;
-      JointSetSpec b;
-      b.angleDeg = 100.0;
-      b.spacing = 1.7;
-      b.spacingVariation = 0.3;
+      JointSetSpec b = jointSet(100.0, 1.7, 0.3);
       b.origin = {0.3, 0.1};
-      JointSetSpec traced;
-      traced.angleDeg = 160.0;
+      JointSetSpec traced = jointSet(160.0, 2.1);
       traced.angleVariationDeg = 10.0;
-      traced.spacing = 2.1;
       traced.trace = 4.0;
       traced.traceVariation = 2.0;
       traced.gap = 1.0;
@@ -145,18 +139,12 @@ TEST(BlockCutting, TheGridCutterGivesThePiecesOfCuttingEveryBlockInTheSameOrder)
 TEST(BlockCutting, TheEstimateBoundsTheBlocksOfCrossingJointSets) {
   VDEC_REQUIREMENTS("REQ-IO-005");
   RegionSpec r = square(40.0);
-  JointSetSpec a;
-  a.angleDeg = 30.0;
-  a.spacing = 1.0;
-  a.spacingVariation = 0.2;
-  JointSetSpec b = a;
-  b.angleDeg = 120.0;
-  r.jointSets = {a, b};
+  r.jointSets = {jointSet(30.0, 1.0, 0.2), jointSet(120.0, 1.0, 0.2)};
   const RegionEstimate e = estimateRegion(r);
   const double blocks = static_cast<double>(cutRegion(r).size());
   EXPECT_GE(e.blocks, blocks);
   EXPECT_LE(e.blocks, 4.0 * blocks);  // of the right order, to refuse scenes by it
-  JointSetSpec tiny = a;
+  JointSetSpec tiny = jointSet(30.0, 1.0, 0.2);
   tiny.trace = 1e-6;
   r.jointSets = {tiny};
   EXPECT_GT(estimateRegion(r).segments, 1e9);  // refused before a single cut
