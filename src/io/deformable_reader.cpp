@@ -64,7 +64,24 @@ int positiveCount(TableReader& r, std::string_view key, int limit) { return stat
 
 }  // namespace
 
-std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& vertices) {
+namespace {
+
+// Refuses a zoning that would take the scene past kSceneZoneLimit, before it is built; shows a
+// progress line for a large one.
+void checkZoneCount(TableReader& r, std::string_view key, double zones, const std::string& how,
+                    std::size_t zonesBefore, SetupProgress& progress) {
+  const double left = static_cast<double>(kSceneZoneLimit) - static_cast<double>(zonesBefore);
+  if (zones > left)
+    r.fail(key, "makes " + how + " = " + shownCount(zones) + " zones, more than the " + shownCount(left) +
+                    " left of the scene's limit of " + std::to_string(kSceneZoneLimit) + " zones (" +
+                    std::to_string(zonesBefore) + " in the blocks before it): zone it more coarsely");
+  if (zones > 2e5) progress.show("zoning " + r.location() + ": about " + shownCount(zones) + " zones", true);
+}
+
+}  // namespace
+
+std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& vertices, std::size_t zonesBefore,
+                               SetupProgress& progress) {
   if (r.has("annulus")) {
     if (r.has("vertices")) r.fail("vertices", "an annulus block takes its outline from `annulus`; remove `vertices`");
     if (r.has("zoning")) r.fail("zoning", "an annulus block is zoned by its `annulus` table; remove `zoning`");
@@ -85,6 +102,7 @@ std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& v
     s.grading = t->number("grading", 1.0);
     if (!(s.grading >= 0.2 && s.grading <= 5.0)) t->fail("grading", "must be in [0.2, 5], got " + shown(s.grading));
     t->finish();
+    checkZoneCount(r, "annulus", 4.0 * s.radial * s.circumferential, "4 radial circumferential", zonesBefore, progress);
     return crossedAnnulusMesh(s);
   }
   if (!r.has("zoning")) return std::nullopt;
@@ -99,6 +117,8 @@ std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& v
     double perimeter = 0.0;
     for (std::size_t i = 0; i < p.size(); ++i) perimeter += norm(p[(i + 1) % p.size()] - p[i]);
     if (perimeter / maxEdge > 1e5) t->fail("max_edge", "is too small for this block: over 1e5 edges on its outline");
+    checkZoneCount(*t, "max_edge", kDelaunayZonesPerArea * signedArea(p) / (maxEdge * maxEdge),
+                   "about 6 area / max_edge^2", zonesBefore, progress);
     t->finish();
     return delaunayMesh(p, maxEdge);
   }
@@ -107,6 +127,7 @@ std::optional<Mesh> readZoning(TableReader& r, const std::function<Polygon()>& v
   validateBlockPolygon(p, 0.0, r.location());
   const int nx = positiveCount(*t, "nx", 4096), ny = positiveCount(*t, "ny", 4096);
   t->finish();
+  checkZoneCount(r, "zoning", 4.0 * nx * ny, "4 nx ny", zonesBefore, progress);
   return crossedQuadMesh({p[0], p[1], p[2], p[3]}, nx, ny);
 }
 

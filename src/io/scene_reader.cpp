@@ -14,6 +14,7 @@
 #include "contact/contact_geometry.hpp"
 #include "contact/deformable_outline.hpp"
 #include "core/errors.hpp"
+#include "core/setup_progress.hpp"
 #include "geometry/block_cutting.hpp"
 #include "geometry/polygon.hpp"
 #include "io/sha256.hpp"
@@ -305,13 +306,16 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     auto [it, fresh] = nameOrigin.emplace(name, origin);
     if (!fresh) r.fail("name", "block name '" + name + "' is already used by " + it->second);
   };
+  SetupProgress progress;
+  std::size_t zonesSoFar = 0;
   for (auto [table, prefix] : top.tables("block")) {
     TableReader r(*table, prefix, path);
     BlockInput in;
     in.name = r.string("name");
     claimName(r, in.name, prefix);
     in.material = materialIndex(r);
-    in.mesh = readZoning(r, [&] { return r.polygon("vertices"); });
+    in.mesh = readZoning(r, [&] { return r.polygon("vertices"); }, zonesSoFar, progress);
+    if (in.mesh) zonesSoFar += in.mesh->triangles.size();
     if (in.mesh) {
       if (!m.blockMaterials[in.material].elastic())
         r.fail("material", "a deformable block needs an elastic material: give block material '" +
@@ -384,7 +388,23 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
       j.finish();
     }
     r.finish();
-    const std::vector<Polygon> pieces = cutRegion(region);
+    // Bounded before any cut: a spacing of 1e-9 or a tiny trace once ran for minutes.
+    const RegionEstimate estimate = estimateRegion(region);
+    const double left = static_cast<double>(kSceneBlockLimit) - static_cast<double>(inputs.size());
+    if (estimate.blocks > left)
+      r.fail(region.jointSets.empty() ? "crack" : "joint_set",
+             "region '" + region.name + "' would be cut into up to " + shownCount(estimate.blocks) +
+                 " blocks (1 + cracks + joint lines + crossings of lines of different sets, the lines counted at "
+                 "spacing - spacing_variation), more than the " + shownCount(left) + " left of the scene's limit of " +
+                 std::to_string(kSceneBlockLimit) + " blocks: raise the spacing of its joint sets");
+    if (estimate.segments > kRegionSegmentLimit)
+      r.fail("joint_set", "region '" + region.name + "' would be cut with up to " + shownCount(estimate.segments) +
+                              " joint segments (per joint line, its longest chord over the shortest trace + gap), "
+                              "more than the limit of " + shownCount(kRegionSegmentLimit) + ": raise trace or gap");
+    const std::string cutting = "cutting region '" + region.name + "' into up to " + shownCount(estimate.blocks) + " blocks: ";
+    progress.show(cutting + "0", estimate.blocks > 1e5);
+    const std::vector<Polygon> pieces =
+        cutRegion(region, [&](std::size_t blocks) { progress.show(cutting + std::to_string(blocks)); });
     for (std::size_t k = 0; k < pieces.size(); ++k) {
       BlockInput in;
       in.name = region.name + "." + std::to_string(k + 1);
@@ -441,6 +461,12 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     validateBlockPolygon(in.polygon, m.roundingLength, in.where);
     addBlock(m, in);
   }
+  // A weight beyond the range of a double would first show as a NaN energy, blamed on the step.
+  for (int b = 0; b < m.blocks.size(); ++b)
+    if (!std::isfinite(m.blocks.mass[b] * norm(m.gravity)))
+      top.subtable("model")->fail("gravity", "its magnitude times the mass of block '" + m.blocks.name[b] + "' (" +
+                                                 shown(m.blocks.mass[b]) + " kg/m) is beyond the range of a double: "
+                                                 "lower model.gravity or the block's density");
   bool anyRigid = false;
   for (int b = 0; b < m.blocks.size(); ++b) anyRigid = anyRigid || !m.blocks.deformable[b];
   if (m.jointMaterials.empty() && (m.blocks.size() > 1 || anyRigid))

@@ -171,3 +171,89 @@ def test_histories_longer_than_the_sample_limit_are_halved_to_what_a_doubled_eve
         assert halved["every"] == 4 and direct["every"] == 4
         assert len(halved["t"]) == count
         assert halved["t"] == direct["t"] and halved["value"] == direct["value"]
+
+
+LARGE_SETUP = """
+[model]
+rounding = 0.01
+[stop]
+cycles = 1
+[[block_material]]
+name = "rock"
+density = 2500.0
+young = 1e9
+poisson = 0.25
+[[joint_material]]
+name = "joint"
+kn = 1e9
+ks = 1e9
+[[block]]
+name = "slab"
+material = "rock"
+vertices = [[0.0, -10.0], [10.0, -10.0], [10.0, 0.0], [0.0, 0.0]]
+zoning = { nx = 256, ny = 256 }
+[[region]]
+name = "mass"
+material = "rock"
+vertices = [[0.0, 0.0], [100.0, 0.0], [100.0, 100.0], [0.0, 100.0]]
+[[region.joint_set]]
+angle = 0.0
+spacing = 0.25
+trace = 0.01
+gap = 100.0
+[[region.joint_set]]
+angle = 90.0
+spacing = 0.25
+trace = 0.01
+gap = 100.0
+"""
+
+
+def run_with_terminal(tmp_path, text):
+    """Runs vdec with stderr on a pseudo-terminal (stdout a pipe); returns the exit code and stderr."""
+    import pty
+    scene = tmp_path / "scene.toml"
+    scene.write_text(text)
+    primary, secondary = pty.openpty()
+    process = subprocess.Popen([VDEC, "run", str(scene), "--out", str(tmp_path / "out")], stdout=subprocess.PIPE,
+                               stderr=secondary)
+    os.close(secondary)
+    output = b""
+    while True:
+        try:
+            chunk = os.read(primary, 4096)
+        except OSError:  # the terminal closes when vdec exits
+            break
+        if not chunk:
+            break
+        output += chunk
+    os.close(primary)
+    return process.wait(timeout=120), output.decode()
+
+
+@pytest.mark.requirements("REQ-IO-005")
+def test_large_setups_show_progress_on_a_terminal_and_nothing_on_a_pipe(tmp_path):
+    code, terminal = run_with_terminal(tmp_path, LARGE_SETUP)
+    assert code == 0, terminal
+    assert f"zoning {tmp_path / 'scene.toml'}:15: [block[0]]: about 262144 zones" in terminal
+    assert "cutting region 'mass' into up to 161604 blocks: 0" in terminal
+    done, _ = run(tmp_path, LARGE_SETUP)
+    assert done.returncode == 0, done.stderr
+    assert "zoning" not in done.stderr and "cutting" not in done.stderr
+
+
+@pytest.mark.requirements("REQ-IO-005")
+@pytest.mark.parametrize("change, replacement, key, message", [
+    ("nx = 256, ny = 256", "nx = 4096, ny = 4096", "block[0].zoning",
+     "makes 4 nx ny = 67108864 zones, more than the 2000000 left of the scene's limit of 2000000 zones"),
+    ("spacing = 0.25\ntrace = 0.01\ngap = 100.0", "spacing = 1e-9", "region[0].joint_set",
+     "region 'mass' would be cut into up to"),
+    ("trace = 0.01\ngap = 100.0", "trace = 1e-9", "region[0].joint_set", "region 'mass' would be cut with up to"),
+])
+def test_setups_beyond_the_limits_are_refused_before_the_work(tmp_path, change, replacement, key, message):
+    import time
+    start = time.monotonic()
+    done, results = run(tmp_path, LARGE_SETUP.replace(change, replacement))
+    assert time.monotonic() - start < 5.0
+    assert done.returncode == 3 and results is None
+    assert f"key '{key}': {message}" in done.stderr, done.stderr

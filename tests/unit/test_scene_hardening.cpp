@@ -211,6 +211,9 @@ TEST(SceneHardening, OverflowingMassAndStiffnessAreNamedWhereTheyAreFormed) {
   const std::string young = readError(path, {"block_material[0].young=1e308", "block_material[0].poisson=0.49"});
   EXPECT_NE(young.find("key 'block_material[0].young': with poisson 0.49 gives a bulk modulus of inf"),
             std::string::npos) << young;
+  const std::string weight = readError(path, {"model.gravity=[0.0, -1e305]"});
+  EXPECT_NE(weight.find("key 'model.gravity': its magnitude times the mass of block 'base' (30000 kg/m)"),
+            std::string::npos) << weight;
   const std::string joint = setupError(path, {"joint_material[0].kn=1e308"});
   EXPECT_NE(joint.find("the rigid-block time step (1.3-28)"), std::string::npos) << joint;
   EXPECT_NE(joint.find("lower [[joint_material]] kn and ks"), std::string::npos) << joint;
