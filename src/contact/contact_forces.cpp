@@ -114,11 +114,20 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
     const double weightBefore = contactWeight(j, c);
     const double fnBefore = weightBefore * c.normalStress, fsBefore = weightBefore * c.shearStress;
     const double energyBefore = c.springEnergy;
+    const bool openBefore = c.open;
     const double slip = j.law == JointLaw::ContinuouslyYielding
                             ? updateContinuouslyYielding(j, c, m.yieldingStates[i], dun, dus)
                             : updateJointStresses(j, c, dun, dus);
     // The length matters only while the contact carries stress.
-    if (!c.open) c.length = contactLength(m, c.corner, hit, outlines);
+    if (!c.open) {
+      // Between rigid blocks a contact closed over the step keeps its springs' energy across the
+      // change of its length; one that has just closed held none, and its length from before it
+      // opened is stale. On a deformable outline the length is the gridpoint's share of the joint,
+      // which strains with the zones: there the stress is the joint's and is held.
+      const double length = contactLength(m, c.corner, hit, outlines);
+      if (!openBefore && !outlines) keepSpringEnergyAcrossLength(j, c, c.length / length);
+      c.length = length;
+    }
     const double weight = contactWeight(j, c);
     const double fn = weight * c.normalStress, fs = weight * c.shearStress;
     totals.slipDissipation += weightBefore * slip;

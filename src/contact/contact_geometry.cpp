@@ -264,8 +264,14 @@ double contactLength(const Model& m, int corner, const FeatureHit& hit, bool onO
       const double c0 = std::clamp(sHere, 0.0, vx.geometry[e].edgeLength), c1 = std::clamp(sFar, 0.0, vx.geometry[e].edgeLength);
       const double gapHere = dot(here - origin, out), gapFar = dot(far - origin, out);
       const double gapAtClippedFar = gapHere + (gapFar - gapHere) * (c1 - sHere) * perUnitAlong;
-      if (std::abs(gapAtClippedFar) > m.contactTolerance) continue;
-      share = std::max(share, 0.5 * std::abs((c1 - c0) * perUnitAlong) * edgeLength);
+      // The share fades out as the far end lifts off B's edge line from half the contact
+      // tolerance to the whole, so that the length is continuous in the geometry: a block
+      // tilting on a face goes from its face's share to a corner's rounding length gradually,
+      // not in one step. Within half the tolerance (a face pulled apart evenly, a joint closed
+      // or opened by its load) the whole share stands.
+      const double fade = std::clamp(2.0 - 2.0 * gapAtClippedFar / m.contactTolerance, 0.0, 1.0);
+      if (fade == 0.0 || gapAtClippedFar < -m.contactTolerance) continue;
+      share = std::max(share, 0.5 * std::abs((c1 - c0) * perUnitAlong) * edgeLength * fade);
     }
     length += share;
   }

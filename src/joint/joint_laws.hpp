@@ -146,6 +146,34 @@ inline double cyStiffness(const JointMaterial& j, const Contact& c) {
   return std::max(cyNormalStiffness(j, c.normalStress), cyShearStiffness(j, c.normalStress));
 }
 
+// A closed contact's length changed from L0 to L1 = L0 / ratio with the geometry, not by any
+// displacement of its springs: the stresses are scaled so that the energy its springs hold,
+// L W(sn, tau), stays what it was. Holding the stresses instead (forces scaling with L) made or
+// destroyed W (L1 - L0) without work wherever the length changed, and where it changed in one
+// step (a block tilting off a face) the pivot force dropped by most of its value.
+inline void keepSpringEnergyAcrossLength(const JointMaterial& j, Contact& c, double ratio) {
+  if (j.law == JointLaw::PointContact || ratio == 1.0) return;
+  if (j.law != JointLaw::ContinuouslyYielding) {
+    const double scale = std::sqrt(ratio);  // W = sn^2 / (2 kn) + tau^2 / (2 ks)
+    c.elasticNormalStress *= scale;
+    c.normalStress *= scale;
+    c.shearStress *= scale;
+    return;
+  }
+  // The normal spring's energy per length W_n(sn), convex and increasing for sn >= 0: Newton's
+  // method on W_n(s) = ratio W_n(sn) from the linear guess converges in a few steps.
+  const double sn0 = std::max(c.normalStress, 0.0), target = ratio * cyNormalSpringEnergy(j, sn0);
+  double sn = sn0 * std::sqrt(ratio);
+  for (int k = 0; k < 30 && sn > 0.0; ++k) {
+    const double step = (cyNormalSpringEnergy(j, sn) - target) / (sn / cyNormalStiffness(j, sn));
+    sn = std::max(sn - step, 0.5 * sn);
+    if (std::abs(step) <= 1e-14 * sn) break;
+  }
+  c.shearStress *= std::sqrt(ratio * cyShearStiffness(j, sn) / cyShearStiffness(j, sn0));
+  c.normalStress = sn;
+  c.elasticNormalStress = sn;
+}
+
 // Updates c.elasticNormalStress, c.normalStress, c.shearStress and the state flags for the
 // displacement increments (dun, dus) of one step, for the point-contact and Coulomb laws (the
 // continuously yielding law, with its own state, is updateContinuouslyYielding). Returns the energy dissipated by slip in the

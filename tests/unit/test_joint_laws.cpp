@@ -232,6 +232,35 @@ TEST(JointLaws, ContinuouslyYieldingDilatesWithThePlasticShearAboveTheBasicFrict
   EXPECT_EQ(low.shearStress, 0.0);
 }
 
+TEST(JointLaws, AChangeOfContactLengthKeepsTheSpringsEnergy) {
+  VDEC_REQUIREMENTS("REQ-CONTACT-006");
+  JointMaterial coulomb;
+  coulomb.law = JointLaw::CoulombSlip;
+  coulomb.kn = 1e9;
+  coulomb.ks = 4e8;
+  JointMaterial cy = continuouslyYielding();
+  cy.knCoefficient = 1e6;
+  cy.knExponent = 0.5;
+  cy.ksCoefficient = 2e5;
+  cy.ksExponent = 0.6;
+  for (const JointMaterial& j : {coulomb, cy}) {
+    for (const double sn : {2e5, 4e6}) {  // below and above the CY joint's knee (1 MPa)
+      for (const double ratio : {50.0, 0.02, 1.7}) {  // L0 / L1: a face to a corner, back, a little
+        Contact c;
+        c.normalStress = c.elasticNormalStress = sn;
+        c.shearStress = -0.3 * sn;
+        c.length = 0.5;
+        const double before = c.length * jointSpringEnergy(j, c);
+        keepSpringEnergyAcrossLength(j, c, ratio);
+        c.length /= ratio;
+        EXPECT_NEAR(c.length * jointSpringEnergy(j, c), before, 1e-12 * before) << "ratio " << ratio << " sn " << sn;
+        EXPECT_EQ(c.elasticNormalStress, c.normalStress);
+        EXPECT_LT(c.shearStress, 0.0);  // the shear keeps its sign
+      }
+    }
+  }
+}
+
 TEST(JointLaws, ContinuouslyYieldingNormalStressStaysOnItsCurveWhateverTheStep) {
   VDEC_REQUIREMENTS("REQ-JOINT-008");
   JointMaterial j = continuouslyYielding();
