@@ -113,6 +113,15 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   for (const JointMaterial& j : model_.jointMaterials)
     if (j.law != JointLaw::PointContact) stepStiffness_ = std::max({stepStiffness_, j.kn, j.ks});
   alpha_ = settings_.adaptiveDamping ? kAdaptiveStart / dt_ : settings_.massDamping;
+  // 1.3-21 multiplies v(t - dt/2) by (1 - alpha dt/2) / (1 + alpha dt/2): past alpha dt = 2 that
+  // factor turns negative and every step reverses the motion instead of damping it.
+  if (!(alpha_ * dt_ <= 2.0)) {
+    std::ostringstream s;
+    s << "solver.mass_damping = " << alpha_ << " 1/s times the time step " << dt_ << " s is " << alpha_ * dt_
+      << ": above 2 the damping term of 1.3-21 reverses the velocities every step instead of damping them; give "
+      << "at most " << 2.0 / dt_ << " 1/s (critical damping of a mode of frequency w is alpha = 2 w)";
+    throw SceneError(s.str());
+  }
 
   // Driven velocities as the run starts, f(0) times the input, which the first history sample
   // shows; every step then sets them to f(t + dt/2).

@@ -33,29 +33,6 @@ _UNCHECKED = "issue 10, unchecked input: a non-finite number in a point or an ar
 _RANGE_BOUND = ("issue 10, unchecked input: an infinite bound of a [[boundary]] range (x, y, r) is taken "
                 "as no bound, a NaN one as selecting nothing, instead of an input error")
 KNOWN_FAILURES = [
-    (r"RB-SHEAR-(CND|CNS|FRACTURE):block\[1\]\.velocity\[0\]:-inf",
-     "issue 10, unchecked input: SIGSEGV in the broad phase (overlappingPairs) once a driven block's "
-     "velocity of -inf has moved it to -inf"),
-    (r"[^:]+:block\[\d+\]\.(vertices\[\d+\]|velocity|force|annulus\.centre)\[\d+\]:(nan|inf|-inf)", _UNCHECKED),
-    (r"[^:]+:model\.gravity\[\d+\]:(nan|inf|-inf)", _UNCHECKED),
-    (r"[^:]+:boundary\[\d+\]\.stress\[\d+\]:(nan|inf|-inf)", _UNCHECKED),
-    (r"[^:]+:boundary\[\d+\]\.(x|y|r)\[\d+\]:nan", _RANGE_BOUND),
-    (r"[^:]+:boundary\[\d+\]\.(x|y|r)\[1\]:inf", _RANGE_BOUND),
-    (r"[^:]+:boundary\[\d+\]\.(x|y|r)\[0\]:-inf", _RANGE_BOUND),
-    (r"[^:]+:history\[\d+\]\.every:int-overflow-32",
-     "issue 10, crash: [[history]] every = 4294967296 is narrowed to int 0 unchecked; cycle % 0 gives SIGFPE"),
-    (r"(?!DB-JOINT-STACK:|DB-UNIAXIAL:|MC-JOINT-STIFFNESS-SWEEP:)[^:]+:block_material\[0\]\.density:huge",
-     "issue 10, unchecked derived quantity: density 1e308 makes the mass infinite; exit 0 with null mass "
-     "(and inertia) in results.json"),
-    (r"(nan-vertex|nan-vertex-reported-as-no-joint-material|nan-region-vertex|infinite-block-force|"
-     r"infinite-boundary-stress)\.toml:reader", _UNCHECKED),
-    (r"(nan-vertex|nan-region-vertex)\.toml:run", _UNCHECKED + "; exit 0 with null mass in results.json"),
-    (r"region-vertex-far-away-cuts-for-minutes\.toml:(reader|run)",
-     "issue 10, resource exhaustion: a region with a vertex at x = -4294967296 is cut into joint-set blocks "
-     "for minutes (no limit checked up front)"),
-    (r"(?!RB-SHEAR-CND:|RB-TENSION:)[^:]+:solver\.mass_damping:huge",
-     "unchecked derived quantity (found here): mass_damping = 1e308 overflows the damping dissipation; exit 0 "
-     "with energy.damping_dissipation null in results.json"),
 ]
 
 

@@ -257,3 +257,15 @@ def test_setups_beyond_the_limits_are_refused_before_the_work(tmp_path, change, 
     assert time.monotonic() - start < 5.0
     assert done.returncode == 3 and results is None
     assert f"key '{key}': {message}" in done.stderr, done.stderr
+
+
+@pytest.mark.requirements("REQ-IO-002")
+def test_mass_damping_past_two_over_the_step_is_an_input_error(tmp_path):
+    # 1e308 1/s made the damping dissipation overflow and wrote null into results.json.
+    text = (ROOT / "verification/problems/RB-REST-SETTLE/scene.toml").read_text()
+    done, _ = run(tmp_path, text, "--set", "solver.mass_damping=1e308")
+    assert done.returncode == 3, done.stderr
+    assert "solver.mass_damping = 1e+308 1/s times the time step" in done.stderr
+    assert "give at most" in done.stderr
+    done, _ = run(tmp_path, text, "--set", "solver.mass_damping=1000", "--set", "stop.cycles=10")
+    assert done.returncode == 0, done.stderr  # alpha dt = 1 at dt = 1e-3 s: heavy but valid
