@@ -1,6 +1,7 @@
 // vdec: the command-line front end. `vdec run SCENE --out DIR` reads a scene, runs it and
 // writes DIR/results.json; the exit code says what went wrong (core/errors.hpp).
 #include <CLI/CLI.hpp>
+
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -10,6 +11,7 @@
 
 #include "core/cycle.hpp"
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "io/build_info.hpp"
 #include "io/results_writer.hpp"
 #include "io/scene_reader.hpp"
@@ -17,20 +19,31 @@
 
 namespace {
 
-int runScene(const std::string& scenePath, const std::string& outDir, const std::vector<std::string>& overrides,
-             bool profile) {
+struct RunOptions {
+  std::string scenePath, outDir;
+  std::vector<std::string> overrides;
+  bool profile = false;
+};
+
+int runScene(const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  vdec::Scene scene = vdec::readScene(scenePath, overrides);
-  for (const std::string& w : scene.warnings) std::fprintf(stderr, "vdec: warning: %s\n", w.c_str());
-  scene.settings.profile = profile;
-  scene.settings.progress = true;
+  const std::string& outDir = options.outDir;
+  // Before the scene is read: a bad directory fails at once, and the results of an earlier run
+  // are gone before this one can fail.
+  vdec::prepareOutputDirectory(outDir);
   vdec::VtkSeries vtk((std::filesystem::path(outDir) / "vtk").string());
+  vdec::VtkSeries::removeStale((std::filesystem::path(outDir) / "vtk").string());
+  vdec::Scene scene = vdec::readScene(options.scenePath, options.overrides);
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "vdec: warning: %s\n", w.c_str());
+  scene.settings.profile = options.profile;
+  scene.settings.progress = true;
+  if (scene.settings.snapshotEvery > 0) vtk.prepare();
   scene.settings.snapshot = [&vtk](const vdec::Model& model) { vtk.write(model); };
   vdec::Cycle cycle(scene.model, scene.settings, scene.histories);
   const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const vdec::RunReport report = cycle.run();
   vdec::writeResults(outDir, scene, report, setup);
-  if (profile) {
+  if (options.profile) {
     std::fprintf(stderr, "stage               seconds    share   ns/cycle\n");
     double total = 0.0;
     for (const auto& s : report.profile) total += s.seconds;
@@ -40,6 +53,11 @@ int runScene(const std::string& scenePath, const std::string& outDir, const std:
                    report.cycles ? 1e9 * s.seconds / static_cast<double>(report.cycles) : 0.0);
     std::fprintf(stderr, "cycles %lld, contacts %zu, blocks %d, detection scans %d\n", report.cycles,
                  scene.model.contacts.size(), scene.model.blocks.size(), report.detectionScans);
+  }
+  if (report.interruptSignal != 0) {
+    std::fprintf(stderr, "vdec: interrupted by %s at cycle %lld, time %g s\n(results up to it written to %s/results.json)\n",
+                 vdec::signalName(report.interruptSignal), report.cycles, report.time, outDir.c_str());
+    return report.errorCode;
   }
   const double ratio = scene.settings.stop.ratio;
   if (report.errorCode == 0 && ratio > 0 && report.stopReason != "ratio")
@@ -65,22 +83,26 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("vdec ") + vdec::build::version + " (" + vdec::build::gitCommit +
                                         ", " + vdec::build::buildType + ", " + vdec::build::compiler + ")");
   app.require_subcommand(1);
-  std::string scenePath, outDir;
-  std::vector<std::string> overrides;
-  bool profile = false;
+  RunOptions options;
   CLI::App* run = app.add_subcommand("run", "run a scene and write DIR/results.json");
-  run->add_option("scene", scenePath, "scene file (TOML)")->required();
-  run->add_option("--out", outDir, "output directory")->required();
-  run->add_option("--set", overrides, "override a scene key, e.g. --set solver.frac=0.2 (repeatable)");
-  run->add_flag("--profile", profile, "print the time spent in each stage of the cycle");
+  run->add_option("scene", options.scenePath, "scene file (TOML)")->required();
+  run->add_option("--out", options.outDir, "output directory")
+      ->required()
+      ->check([](const std::string& dir) {
+        return dir.empty() ? std::string("the output directory is empty; give one, e.g. --out out") : std::string();
+      });
+  run->add_option("--set", options.overrides, "override a scene key, e.g. --set solver.frac=0.2 (repeatable)");
+  run->add_flag("--profile", options.profile, "print the time spent in each stage of the cycle");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : static_cast<int>(vdec::ExitCode::Usage);
   }
+  // From here a signal stops the run between two steps, with the results so far written.
+  vdec::installInterruptHandlers();
   try {
-    return runScene(scenePath, outDir, overrides, profile);
+    return runScene(options);
   } catch (const vdec::Error& e) {
     std::fprintf(stderr, "vdec: error: %s\n", e.what());
     return static_cast<int>(e.code());

@@ -10,6 +10,7 @@
 #include "contact/contact_forces.hpp"
 #include "contact/deformable_outline.hpp"
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "motion/gridpoint_motion.hpp"
 #include "motion/rigid_motion.hpp"
 #include "zone/cst.hpp"
@@ -418,6 +419,13 @@ RunReport Cycle::run() {
   try {
     if (snapshots) settings_.snapshot(model_);
     while (!stopReached(report.stopReason)) {
+      // Between two steps, where the state is whole: a signal ends the run here (core/interrupt).
+      if (const int requested = interruptSignal(); requested != 0) {
+        report.stopReason = "interrupted";
+        report.interruptSignal = requested;
+        report.errorCode = static_cast<int>(ExitCode::Interrupted);
+        break;
+      }
       for (Stage& stage : stages_) {
         if (settings_.profile) {
           const auto t0 = Clock::now();

@@ -75,6 +75,8 @@ struct RunReport {
   // Set when a numerical error stopped the run; the report then holds the state up to it.
   std::string error;
   int errorCode = 0;
+  // The signal that interrupted the run (stopReason "interrupted", errorCode Interrupted), else 0.
+  int interruptSignal = 0;
 };
 
 class Cycle {

@@ -15,6 +15,7 @@ enum class ExitCode : int {
   Instability = 5,        // NaN or mechanical energy growing beyond the energy supplied
   ContactOverlap = 6,     // overlap beyond half the rounding length
   Output = 7,             // results could not be written
+  Interrupted = 8,        // SIGINT or SIGTERM: stopped between two steps, results so far written
 };
 
 class Error : public std::runtime_error {

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <numbers>
 #include <nlohmann/json.hpp>
@@ -13,6 +12,8 @@
 #include "contact/contact_geometry.hpp"
 #include "geometry/zoning.hpp"
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
+#include "io/atomic_file.hpp"
 #include "io/build_info.hpp"
 
 namespace vdec {
@@ -91,6 +92,26 @@ void writeContinuum(nlohmann::json& j, const Model& m) {
 
 }  // namespace
 
+void prepareOutputDirectory(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw OutputError(dir + ": not a directory; --out names the directory results.json is written in");
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir, ec))
+    throw OutputError(dir + ": cannot create the output directory (" + (ec ? ec.message() : "no reason given") +
+                      "); choose another --out");
+  const fs::path results = fs::path(dir) / "results.json";
+  const fs::file_status status = fs::symlink_status(results, ec);
+  if (fs::is_directory(status))
+    throw OutputError(results.string() + ": a directory is in the way of the results; remove it or choose another --out");
+  // A file can be created next to results.json (and renamed, as writeResults will).
+  AtomicFile probe(results.string());
+  if (fs::exists(status) && !fs::remove(results, ec) && ec)
+    throw OutputError(results.string() + ": cannot remove the results of an earlier run (" + ec.message() +
+                      "); remove it or choose another --out");
+}
+
 void writeResults(const std::string& dir, const Scene& scene, const RunReport& report, double setupSeconds) {
   using nlohmann::json;
   const Model& m = scene.model;
@@ -113,6 +134,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
               {"setup_seconds", setupSeconds},
               {"stages", report.stages},
               {"stop_reason", report.stopReason},
+              {"interrupted", report.interruptSignal != 0},
+              {"signal", signalName(report.interruptSignal)},
               {"error", report.error},
               {"exit_code", report.errorCode},
               {"contact_detection_scans", report.detectionScans},
@@ -179,11 +202,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
 
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  const std::string path = (std::filesystem::path(dir) / "results.json").string();
-  std::ofstream out(path);
-  if (ec || !out) throw OutputError(path + ": cannot write results (" + (ec ? ec.message() : "open failed") + ")");
-  out << j.dump(1) << "\n";
-  if (!out) throw OutputError(path + ": write failed");
+  writeFileAtomically((std::filesystem::path(dir) / "results.json").string(), j.dump(1) + "\n");
 }
 
 }  // namespace vdec

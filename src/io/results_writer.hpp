@@ -7,7 +7,14 @@
 
 namespace vdec {
 
-// Writes dir/results.json, creating dir. Throws OutputError naming the path on failure.
+// Makes DIR ready before the scene is read, so that a bad directory fails at once: created if
+// missing, a directory (a symlink to one is followed), a file can be created in it. Removes
+// DIR/results.json of an earlier run (a symlink there is removed, not its target), so that a run
+// that fails before it has results leaves none. Throws OutputError naming the path.
+void prepareOutputDirectory(const std::string& dir);
+
+// Writes dir/results.json under a temporary name renamed over it (io/atomic_file.hpp), creating
+// dir. Throws OutputError naming the path on failure.
 void writeResults(const std::string& dir, const Scene& scene, const RunReport& report, double setupSeconds);
 
 }  // namespace vdec

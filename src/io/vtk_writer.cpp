@@ -2,11 +2,11 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "contact/contact_geometry.hpp"
 #include "core/errors.hpp"
+#include "io/atomic_file.hpp"
 
 namespace vdec {
 
@@ -92,17 +92,55 @@ void vectorArray(std::ostream& out, const char* name, const std::vector<Vec2>& v
   out << "</DataArray>\n";
 }
 
+bool isSnapshotName(const std::string& name) {
+  constexpr std::string_view prefix = "snapshot_", suffix = ".vtu";
+  if (name.size() < prefix.size() + 9 + suffix.size() || !name.starts_with(prefix) || !name.ends_with(suffix))
+    return false;
+  for (std::size_t i = prefix.size(); i < name.size() - suffix.size(); ++i)
+    if (name[i] < '0' || name[i] > '9') return false;
+  return true;
+}
+
 }  // namespace
+
+void VtkSeries::removeStale(const std::string& directory) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_directory(directory, ec)) return;
+  std::vector<fs::path> stale;
+  for (const fs::directory_entry& e : fs::directory_iterator(directory, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name == "model.pvd" || isSnapshotName(name)) stale.push_back(e.path());
+  }
+  if (ec) throw OutputError(directory + ": cannot list the old VTK snapshots (" + ec.message() + ")");
+  for (const fs::path& p : stale)
+    if (!fs::remove(p, ec) && ec)
+      throw OutputError(p.string() + ": cannot remove this VTK file of an earlier run (" + ec.message() +
+                        "); remove it or choose another --out");
+}
+
+void VtkSeries::prepare() const {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(directory_, ec);
+  if (ec || !fs::is_directory(directory_))
+    throw OutputError(directory_ + ": cannot create the VTK directory (" +
+                      (ec ? ec.message() : std::string("a file of that name is in the way")) +
+                      "); choose another --out");
+  // A file can be created there: the same check the results directory gets.
+  AtomicFile probe((fs::path(directory_) / "model.pvd").string());
+}
 
 void VtkSeries::write(const Model& m) {
   std::error_code ec;
   std::filesystem::create_directories(directory_, ec);
+  if (ec) throw OutputError(directory_ + ": cannot create the VTK directory (" + ec.message() + ")");
   char name[64];
   std::snprintf(name, sizeof name, "snapshot_%09lld.vtu", m.cycle);
   const std::string path = (std::filesystem::path(directory_) / name).string();
   const Grid g = collect(m);
-  std::ofstream out(path);
-  if (ec || !out) throw OutputError(path + ": cannot write the VTK snapshot");
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
   out.precision(17);
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
       << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << g.points.size() << "\" NumberOfCells=\"" << g.cells.size()
@@ -129,16 +167,15 @@ void VtkSeries::write(const Model& m) {
   dataArray(out, "normal_force", g.normalForce, "Float64");
   dataArray(out, "shear_force", g.shearForce, "Float64");
   out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-  if (!out) throw OutputError(path + ": write failed");
+  file.commit();
   written_.emplace_back(m.time, name);
-  const std::string pvd = (std::filesystem::path(directory_) / "model.pvd").string();
-  std::ofstream collection(pvd);
+  std::ostringstream collection;
   collection.precision(17);
   collection << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n<Collection>\n";
-  for (const auto& [time, file] : written_)
-    collection << "<DataSet timestep=\"" << time << "\" file=\"" << file << "\"/>\n";
+  for (const auto& [time, snapshot] : written_)
+    collection << "<DataSet timestep=\"" << time << "\" file=\"" << snapshot << "\"/>\n";
   collection << "</Collection>\n</VTKFile>\n";
-  if (!collection) throw OutputError(pvd + ": write failed");
+  writeFileAtomically((std::filesystem::path(directory_) / "model.pvd").string(), collection.str());
 }
 
 }  // namespace vdec

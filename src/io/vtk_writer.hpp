@@ -13,7 +13,14 @@ namespace vdec {
 class VtkSeries {
  public:
   explicit VtkSeries(std::string directory) : directory_(std::move(directory)) {}
-  // Writes DIR/snapshot_<cycle>.vtu and rewrites DIR/model.pvd. Throws OutputError.
+  // Removes model.pvd and snapshot_<cycle>.vtu files an earlier run left in `directory`, so that
+  // they cannot pass for this run's. Other files are left alone. Throws OutputError.
+  static void removeStale(const std::string& directory);
+  // Creates the directory and checks that a file can be written in it, before the run starts.
+  // Throws OutputError naming it.
+  void prepare() const;
+  // Writes DIR/snapshot_<cycle>.vtu and rewrites DIR/model.pvd, each under a temporary name
+  // renamed over the target (io/atomic_file.hpp). Throws OutputError.
   void write(const Model& model);
 
  private:
