@@ -45,7 +45,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/cycle.hpp"
+#include "run/cycle.hpp"
 #include "core/model.hpp"
 #include "io/scene_reader.hpp"
 

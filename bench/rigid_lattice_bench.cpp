@@ -33,7 +33,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/cycle.hpp"
+#include "run/cycle.hpp"
 #include "core/model.hpp"
 #include "io/build_info.hpp"
 #include "io/scene_reader.hpp"

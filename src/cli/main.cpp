@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/cycle.hpp"
+#include "run/cycle.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "io/build_info.hpp"

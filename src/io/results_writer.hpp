@@ -2,7 +2,7 @@
 // results.json (schema vdec.results/1): provenance, run summary, histories, final state.
 #include <string>
 
-#include "core/cycle.hpp"
+#include "run/cycle.hpp"
 #include "io/scene_reader.hpp"
 
 namespace vdec {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/cycle.hpp"
-#include "core/history.hpp"
+#include "run/cycle.hpp"
+#include "run/history.hpp"
 #include "core/model.hpp"
 
 namespace vdec {

@@ -5,7 +5,7 @@
 
 #include "contact/contact_detection.hpp"
 #include "contact/contact_geometry.hpp"
-#include "core/cycle.hpp"
+#include "run/cycle.hpp"
 #include "requirements.hpp"
 #include "scene_fixture.hpp"
 

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "contact/contact_geometry.hpp"
-#include "core/cycle.hpp"
+#include "run/cycle.hpp"
 #include "core/errors.hpp"
 #include "requirements.hpp"
 #include "scene_fixture.hpp"

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/cycle.hpp"
+#include "run/cycle.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "io/atomic_file.hpp"

@@ -1,6 +1,6 @@
 #include <cmath>
 
-#include "core/cycle.hpp"
+#include "run/cycle.hpp"
 #include "core/errors.hpp"
 #include "motion/rigid_motion.hpp"
 #include "requirements.hpp"

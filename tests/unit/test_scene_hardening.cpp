@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/cycle.hpp"
+#include "run/cycle.hpp"
 #include "core/errors.hpp"
 #include "io/deformable_reader.hpp"
 #include "requirements.hpp"

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <numbers>
 
-#include "core/cycle.hpp"
+#include "run/cycle.hpp"
 #include "core/errors.hpp"
 #include "geometry/zoning.hpp"
 #include "requirements.hpp"

@@ -7,7 +7,7 @@
 
 #include "contact/contact_detection.hpp"
 #include "contact/contact_forces.hpp"
-#include "core/history.hpp"
+#include "run/history.hpp"
 #include "core/model.hpp"
 #include "motion/motion_totals.hpp"
 

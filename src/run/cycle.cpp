@@ -1,4 +1,4 @@
-#include "core/cycle.hpp"
+#include "run/cycle.hpp"
 
 #include <unistd.h>
 

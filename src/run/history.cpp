@@ -1,4 +1,4 @@
-#include "core/history.hpp"
+#include "run/history.hpp"
 
 #include <numbers>
 
