@@ -379,6 +379,17 @@ def test_evidence_of_uncommitted_work_fails_qualification_and_warns_the_test_sui
 
 
 @CONFIGURATION_CONTROL
+def test_evidence_outside_a_git_checkout_fails_qualification_and_warns_the_test_suite(repo, capsys):
+    shutil.rmtree(repo / ".git")
+    out, _ = gaps_of(repo, capsys)
+    assert "software.git_commit" in out and "cannot be compared: current commit unknown (not a git checkout)" in out
+    edit(repo, SUMMARY, '"level": "full"', '"level": "base"')
+    code, out = run(repo, capsys, *as_test_suite(repo))
+    assert code == 0, out
+    assert "cannot be compared: current commit unknown" in out
+
+
+@CONFIGURATION_CONTROL
 def test_software_built_from_uncommitted_changes_fails_qualification(repo, capsys):
     head = git(repo, "rev-parse", "HEAD")
     edit(repo, SUMMARY, f'"git_commit": "{head}",\n  "build_type"', f'"git_commit": "{head}-dirty",\n  "build_type"')
