@@ -119,3 +119,17 @@ def test_a_changed_copy_of_the_problems_is_caught_by_the_audit(tmp_path):
     assert f"the problems folder {copy} is outside the repository" in page
     assert ("its runs did not read the repository&#x27;s verification/problems/RB-INCLINE-STICK/problem.toml"
             in page)
+
+
+def test_the_analytic_module_of_a_derived_extract_is_recorded(tmp_path):
+    folder = tmp_path / "DB-UNIAXIAL"
+    shutil.copytree(PROBLEMS / "DB-UNIAXIAL", folder)
+    text = (folder / "problem.toml").read_text()
+    # The inversion formula of the derived extracts from another module than the references'.
+    assert 'kind = "derived", function = "elastic.young_poisson_from_plane_strain_uniaxial"' in text
+    (folder / "problem.toml").write_text(text.replace("elastic.young_poisson_from_plane_strain_uniaxial",
+                                                      "rocking.block_radius_and_slenderness"))
+    problem = load_problem(folder / "problem.toml")
+    assert "rocking" not in " ".join(c.reference.function_name for c in problem.checks)
+    inputs = provenance.problem_inputs(problem, problem.runs)
+    assert inputs["verification/analytic/rocking.py"] == provenance.sha256_of(ROOT / "verification/analytic/rocking.py")

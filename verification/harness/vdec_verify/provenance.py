@@ -178,12 +178,26 @@ def analytic_inputs(function_names, package="analytic"):
     return files, programs
 
 
+def _derived_functions(extract):
+    """The analytic functions ("module.function") of a derived extract and of its inputs; the
+    harness's own arithmetic (a name without a dot, e.g. "ratio") is in the harness's files."""
+    found = []
+    if isinstance(extract, dict):
+        if extract.get("kind") == "derived" and "." in str(extract.get("function", "")):
+            found.append(extract["function"])
+        for value in extract.values():
+            found += _derived_functions(value)
+    return found
+
+
 def problem_inputs(problem, runs, package="analytic"):
     """{recorded path: SHA-256} of every file the problem's runs and checks depended on: its
     problem.toml, its scene and the files the scene reads, the analytic modules and the
     reference programs of its checks. A file that could not be read has None."""
     overrides = [o for run in runs for o in run.overrides]
-    modules, programs = analytic_inputs([c.reference.function_name for c in problem.checks], package)
+    functions = [c.reference.function_name for c in problem.checks]
+    functions += [name for c in problem.checks for name in _derived_functions(c.extract)]
+    modules, programs = analytic_inputs(functions, package)
     recorded = hashes([problem.path, problem.scene, *scene_files(problem.scene, overrides), *modules])
     for key, program in programs:
         recorded[key] = sha256_of(program) if program is not None else None
