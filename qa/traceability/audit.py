@@ -738,13 +738,14 @@ def check_hashes(audit, subject, recorded, reqs=()):
 
 def check_commits(audit, mode, head, info, harness):
     """Commit and cleanliness of the evidence: a commit other than HEAD is a gap in both modes;
-    uncommitted or untracked files are a gap for qualification, a warning in the test suite
-    (which a developer runs on work in progress)."""
+    no commit at all, uncommitted or untracked files are a gap for qualification, a warning in
+    the test suite (which a developer runs on work in progress, or on a copy outside git)."""
     strict = mode == "qualification"
     for label, commit in (("software.git_commit", info["software_commit"]),
                           ("harness.git_commit", info["harness_commit"])):
         if not commit or commit == "unknown":
-            audit.gap("verification summary", f"summary.json {label} is {commit!r}: no commit identifies the evidence")
+            audit.gap_or_warn(strict, "verification summary",
+                              f"summary.json {label} is {commit!r}: no commit identifies the evidence")
             continue
         sha = str(commit).removesuffix("-dirty")
         if str(commit).endswith("-dirty"):

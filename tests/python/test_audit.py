@@ -381,12 +381,14 @@ def test_evidence_of_uncommitted_work_fails_qualification_and_warns_the_test_sui
 @CONFIGURATION_CONTROL
 def test_evidence_outside_a_git_checkout_fails_qualification_and_warns_the_test_suite(repo, capsys):
     shutil.rmtree(repo / ".git")
+    edit(repo, SUMMARY, '"git_commit": "', '"git_commit": "unknown", "old_commit": "')
     out, _ = gaps_of(repo, capsys)
-    assert "software.git_commit" in out and "cannot be compared: current commit unknown (not a git checkout)" in out
+    assert "harness.git_commit" in out and "cannot be compared: current commit unknown (not a git checkout)" in out
+    assert "summary.json software.git_commit is 'unknown': no commit identifies the evidence" in out
     edit(repo, SUMMARY, '"level": "full"', '"level": "base"')
     code, out = run(repo, capsys, *as_test_suite(repo))
     assert code == 0, out
-    assert "cannot be compared: current commit unknown" in out
+    assert "cannot be compared: current commit unknown" in out and "is 'unknown'" in out
 
 
 @CONFIGURATION_CONTROL
