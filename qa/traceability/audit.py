@@ -770,14 +770,13 @@ def check_configuration(audit, mode, head, info, problems):
     if summary is None:
         return          # one gap already says the summary is missing or unusable
     harness = summary.get("harness") if isinstance(summary.get("harness"), dict) else {}
-    rel = "summary.json"
     want = MODES[mode]["level"]
     if info["level"] != want:
-        audit.gap("verification summary", f"{rel} is of level {info['level']!r}; the {mode} audit judges "
+        audit.gap("verification summary", f"summary.json is of level {info['level']!r}; the {mode} audit judges "
                   f"level '{want}' evidence ({MODES[mode]['writer']})")
     check_commits(audit, mode, head, info, harness)
     if "problems_dir_in_repository" not in harness:
-        audit.gap("verification summary", f"{rel} does not record the run's configuration (problems folder, "
+        audit.gap("verification summary", "summary.json does not record the run's configuration (problems folder, "
                   "filter, vdec binary, harness files): rerun the suite with the current harness")
         return
     if harness.get("problems_dir_in_repository") is not True:
@@ -793,7 +792,7 @@ def check_configuration(audit, mode, head, info, problems):
     current = {audit.rel(p) for p in (audit.root / HARNESS_FOLDER).glob("*.py")}
     for path in sorted(current - set(files)):
         audit.gap("harness", f"{path} is not among the harness files recorded in summary.json")
-    for n, entry in enumerate(summary.get("problems") if isinstance(summary.get("problems"), list) else []):
+    for entry in summary.get("problems") if isinstance(summary.get("problems"), list) else []:
         if not isinstance(entry, dict) or not isinstance(entry.get("id"), str):
             continue    # load_summary has a gap for it
         pid = entry["id"]
