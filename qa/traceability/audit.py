@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Traceability audit: requirements <-> docs, code, verification problems and tests.
 
-Reads qa/traceability/requirements.toml, verification/problems/*/problem.toml, the stored
-verification summary (reports/verification/summary.json) and the JUnit XML of the unit and
-Python tests (reports/tests/gtest*.xml, pytest*.xml). Writes the requirements traceability
-matrix as reports/traceability/rtm.csv and rtm.html and prints a verdict.
+Reads qa/traceability/requirements.toml, verification/problems/*/problem.toml, a stored
+verification summary and the JUnit XML of the unit and Python tests; writes the requirements
+traceability matrix (rtm.csv, rtm.html) and prints a verdict. Two modes (MODES): the
+qualification audit judges the full suite's evidence in reports/ (scripts/qualify.sh); the
+test-suite audit judges the base-level evidence ctest wrote under build/reports/. Both
+recompute the SHA-256 of every input the summary records (configuration control).
 
 Every inconsistency is a "gap"; all gaps are listed, none stops the audit early. Exit status:
 0 no gaps, 1 gaps, 2 usage or input error (requirements.toml unreadable, output not writable).
@@ -14,6 +16,7 @@ import argparse
 import csv
 import datetime
 import glob
+import hashlib
 import html
 import json
 import os
@@ -25,6 +28,16 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 SCHEMA = "vdec.verification/1"
+HARNESS_FOLDER = "verification/harness/vdec_verify"
+# What each mode judges, and where its evidence is by default (paths relative to --root).
+MODES = {
+    "qualification": {"level": "full", "summary": "reports/verification/summary.json",
+                      "junit": "reports/tests/*.xml", "out": "reports/traceability",
+                      "writer": "scripts/qualify.sh, the README's first command"},
+    "test-suite": {"level": "base", "summary": "build/reports/verification-base/summary.json",
+                   "junit": "build/reports/tests/*.xml", "out": "build/reports/traceability",
+                   "writer": "ctest's verification test"},
+}
 REQ_ID = re.compile(r"^REQ-[A-Z]+-\d{3}$")
 REQUIREMENT_KEYS = {"id", "component", "text", "source", "docs", "code", "problems", "tests"}
 COMPONENT_KEYS = {"id", "title", "docs"}
@@ -69,6 +82,13 @@ class Audit:
 
     def warn(self, text):
         self.warnings.append(text)
+
+    def gap_or_warn(self, is_gap, subject, text):
+        """A finding that fails one mode of the audit and is only reported by the other."""
+        if is_gap:
+            self.gap(subject, text)
+        else:
+            self.warn(f"{subject}: {text}")
 
     def rel(self, path):
         """A path as written relative to the repository root when it lies inside it."""
@@ -238,8 +258,9 @@ def load_problems(audit, folder):
 
 
 def load_summary(audit, path):
-    """Problem statuses from summary.json, or None when there is no usable summary."""
-    info = {"software_commit": None, "harness_commit": None, "version": None, "level": "full"}
+    """(problem statuses, info) from summary.json; statuses None when there is no usable summary.
+    info keeps the commits, the level and the whole summary for check_configuration."""
+    info = {"software_commit": None, "harness_commit": None, "version": None, "level": None, "summary": None}
     try:
         summary = json.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
@@ -257,7 +278,7 @@ def load_summary(audit, path):
     software = summary.get("software") if isinstance(summary.get("software"), dict) else {}
     harness = summary.get("harness") if isinstance(summary.get("harness"), dict) else {}
     info = {"software_commit": software.get("git_commit"), "harness_commit": harness.get("git_commit"),
-            "version": software.get("version"), "level": harness.get("level", "full")}
+            "version": software.get("version"), "level": harness.get("level"), "summary": summary}
     statuses = {}
     entries = summary.get("problems")
     if not isinstance(entries, list):
@@ -461,7 +482,7 @@ def check_docs_reference(audit, subject, docs):
         audit.gap(subject, f"docs anchor #{anchor} not found in {file}", [subject])
 
 
-def check_problems(audit, problems, statuses, req_ids, requirements, summary_level="full"):
+def check_problems(audit, problems, statuses, req_ids, requirements, level="full"):
     listed_by = {}
     for r in requirements:
         for pid in r.get("problems", []) if isinstance(r.get("problems"), list) else []:
@@ -480,9 +501,9 @@ def check_problems(audit, problems, statuses, req_ids, requirements, summary_lev
             continue        # one gap already says the summary is missing
         status = statuses.get(pid)
         if status is None:
-            if p["level"] == "full" and summary_level == "base":
-                # A base-level run (the test suite) leaves the full-suite problems out by design;
-                # the full suite's own summary is audited for them.
+            if p["level"] == "full" and level == "base":
+                # The test suite's base-level run leaves the full-suite problems out by design;
+                # the qualification audit judges the full suite's own summary for them.
                 audit.warn(f"problem {pid} (level 'full') is not in this base-level summary")
             else:
                 level = f" (level = {p['level']!r})" if p["level"] != "base" else ""
@@ -654,7 +675,8 @@ def write_html(path, audit, ctx):
 <table>
 <tr><th>audit date</th><td>{e(ctx['date'])}</td></tr>
 <tr><th>current commit (HEAD)</th><td><code>{e(ctx['head'] or 'unknown (not a git checkout)')}</code></td></tr>
-<tr><th>verification summary</th><td>{e(ctx['summary_rel'])}: software commit <code>{e(str(s['software_commit']))}</code>
+<tr><th>audit mode</th><td>{e(ctx['mode'])} (judges level {e(MODES[ctx['mode']]['level'])} evidence)</td></tr>
+<tr><th>verification summary</th><td>{e(ctx['summary_rel'])} (level {e(str(s['level']))}): software commit <code>{e(str(s['software_commit']))}</code>
 (version {e(str(s['version']))}), harness commit <code>{e(str(s['harness_commit']))}</code></td></tr>
 <tr><th>test results</th><td>{e(', '.join(ctx['junit_files']) or 'none')}</td></tr>
 <tr><th>counts</th><td>{len(ctx['requirements'])} requirements, {len(ctx['components'])} components,
@@ -681,21 +703,109 @@ listed problem or test passed and no gap is held against it.</p>
     path.write_text(page, encoding="utf-8")
 
 
-# ---------------------------------------------------------------- main
+# ---------------------------------------------------------------- configuration control
 
-def commit_warnings(audit, head, info):
+def sha256_of(path):
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    except OSError:
+        return None
+
+
+def recorded_file(root, recorded):
+    """The file a path in summary.json names: relative to the repository root, or absolute."""
+    path = Path(recorded)
+    return path if path.is_absolute() else root / path
+
+
+def check_hashes(audit, subject, recorded, reqs=()):
+    """Recomputes each recorded SHA-256; a file that changed, vanished or was unreadable when
+    the suite ran is a gap: the evidence is not of the files there now."""
+    if not isinstance(recorded, dict) or not recorded:
+        audit.gap(subject, "summary.json records no input hashes (rerun the suite with the current harness)", reqs)
+        return
+    for path, sha in sorted(recorded.items()):
+        if not isinstance(sha, str):
+            audit.gap(subject, f"input {path} was not found or not readable when the suite ran", reqs)
+            continue
+        now = sha256_of(recorded_file(audit.root, path))
+        if now is None:
+            audit.gap(subject, f"input {path} no longer exists or is unreadable", reqs)
+        elif now != sha:
+            audit.gap(subject, f"input {path} differs from the file that ran (SHA-256 {sha[:16]}... in "
+                      f"summary.json, {now[:16]}... now)", reqs)
+
+
+def check_commits(audit, mode, head, info, harness):
+    """Commit and cleanliness of the evidence: a commit other than HEAD is a gap in both modes;
+    no commit at all, uncommitted or untracked files are a gap for qualification, a warning in
+    the test suite (which a developer runs on work in progress, or on a copy outside git)."""
+    strict = mode == "qualification"
     for label, commit in (("software.git_commit", info["software_commit"]),
                           ("harness.git_commit", info["harness_commit"])):
-        if not commit:
+        if not commit or commit == "unknown":
+            audit.gap_or_warn(strict, "verification summary",
+                              f"summary.json {label} is {commit!r}: no commit identifies the evidence")
             continue
         sha = str(commit).removesuffix("-dirty")
         if str(commit).endswith("-dirty"):
-            audit.warn(f"summary.json {label} {commit}: built from uncommitted changes")
+            audit.gap_or_warn(strict, "verification summary",
+                              f"summary.json {label} {commit}: built from uncommitted changes")
         if head is None:
-            audit.warn(f"summary.json {label} {commit} cannot be compared: current commit unknown")
+            audit.gap_or_warn(strict, "verification summary", f"summary.json {label} {commit} cannot be "
+                              "compared: current commit unknown (not a git checkout)")
         elif not (len(sha) >= 7 and head.startswith(sha)):
-            audit.warn(f"summary.json {label} {commit} differs from HEAD {head}: the verification results "
-                       "are not from the current commit")
+            audit.gap("verification summary", f"summary.json {label} {commit} differs from HEAD {head}: the "
+                      "verification evidence is not from the current commit")
+    if harness.get("git_dirty") is not False:
+        text = (f"summary.json harness.git_dirty is {harness.get('git_dirty')!r}: the suite ran with uncommitted "
+                "changes or untracked files in the repository")
+        audit.gap_or_warn(strict, "verification summary", text)
+
+
+def check_configuration(audit, mode, head, info, problems):
+    """The gaps of configuration control: evidence of the wrong level, from another commit, from
+    files outside the repository or from files that have changed since (see README.md)."""
+    summary = info["summary"]
+    if summary is None:
+        return          # one gap already says the summary is missing or unusable
+    harness = summary.get("harness") if isinstance(summary.get("harness"), dict) else {}
+    want = MODES[mode]["level"]
+    if info["level"] != want:
+        audit.gap("verification summary", f"summary.json is of level {info['level']!r}; the {mode} audit judges "
+                  f"level '{want}' evidence ({MODES[mode]['writer']})")
+    check_commits(audit, mode, head, info, harness)
+    if "problems_dir_in_repository" not in harness:
+        audit.gap("verification summary", "summary.json does not record the run's configuration (problems folder, "
+                  "filter, vdec binary, harness files): rerun the suite with the current harness")
+        return
+    if harness.get("problems_dir_in_repository") is not True:
+        audit.gap("verification summary", f"the problems folder {harness.get('problems_dir')} is outside the "
+                  "repository: not qualified")
+    if harness.get("filter"):
+        audit.gap("verification summary", f"the suite ran only the problems matching the filter "
+                  f"{harness.get('filter')}")
+    vdec = harness.get("vdec") if isinstance(harness.get("vdec"), dict) else {}
+    check_hashes(audit, "vdec binary", {vdec.get("path"): vdec.get("sha256")} if vdec.get("path") else {})
+    files = harness.get("files") if isinstance(harness.get("files"), dict) else {}
+    check_hashes(audit, "harness", files)
+    current = {audit.rel(p) for p in (audit.root / HARNESS_FOLDER).glob("*.py")}
+    for path in sorted(current - set(files)):
+        audit.gap("harness", f"{path} is not among the harness files recorded in summary.json")
+    for entry in summary.get("problems") if isinstance(summary.get("problems"), list) else []:
+        if not isinstance(entry, dict) or not isinstance(entry.get("id"), str):
+            continue    # load_summary has a gap for it
+        pid = entry["id"]
+        reqs = problems[pid]["requirements"] if pid in problems else ()
+        inputs = entry.get("inputs")
+        check_hashes(audit, f"problem {pid}", inputs, reqs)
+        mine = f"verification/problems/{pid}/problem.toml"
+        if isinstance(inputs, dict) and inputs and mine not in inputs:
+            audit.gap(f"problem {pid}", f"its runs did not read the repository's {mine} (read "
+                      f"{', '.join(k for k in inputs if k.endswith('problem.toml')) or 'none'})", reqs)
+
+
+# ---------------------------------------------------------------- main
 
 
 def main(argv=None):
@@ -703,11 +813,18 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description="vdec requirements traceability audit")
     parser.add_argument("--root", default=str(here.parents[2]), help="repository root (default: %(default)s)")
     parser.add_argument("--requirements", help="requirements file (default: ROOT/qa/traceability/requirements.toml)")
-    parser.add_argument("--summary", help="verification summary (default: ROOT/reports/verification/summary.json)")
+    parser.add_argument("--mode", choices=sorted(MODES), default="qualification",
+                        help="qualification (default): judge the full suite's evidence; test-suite: judge "
+                        "the base-level evidence ctest just produced")
+    parser.add_argument("--summary", help="verification summary (default: ROOT/reports/verification/summary.json; "
+                        "test-suite mode: ROOT/build/reports/verification-base/summary.json)")
     parser.add_argument("--junit", nargs="+", action="extend", metavar="GLOB",
-                        help="JUnit XML files or globs (default: ROOT/reports/tests/*.xml)")
-    parser.add_argument("--out", help="output folder (default: ROOT/reports/traceability)")
+                        help="JUnit XML files or globs (default: ROOT/reports/tests/*.xml; test-suite mode: "
+                        "ROOT/build/reports/tests/*.xml)")
+    parser.add_argument("--out", help="output folder (default: ROOT/reports/traceability; test-suite mode: "
+                        "ROOT/build/reports/traceability)")
     args = parser.parse_args(argv)
+    defaults = MODES[args.mode]
 
     root = Path(args.root)
     if not root.is_dir():
@@ -737,21 +854,21 @@ def main(argv=None):
         audit.gap("requirements file", "no requirements")
 
     problems = load_problems(audit, root / "verification/problems")
-    summary_path = Path(args.summary) if args.summary else root / "reports/verification/summary.json"
+    summary_path = Path(args.summary) if args.summary else root / defaults["summary"]
     statuses, summary_info = load_summary(audit, summary_path)
-    tests = load_junit(audit, args.junit, str(root / "reports/tests/*.xml"))
+    tests = load_junit(audit, args.junit, str(root / defaults["junit"]))
     req_ids = {r.get("id") for r in requirements if isinstance(r.get("id"), str)}
 
     check_requirements(audit, requirements, components, problems, statuses, tests)
-    check_problems(audit, problems, statuses, req_ids, requirements, summary_info.get("level", "full"))
+    check_problems(audit, problems, statuses, req_ids, requirements, defaults["level"])
     check_tests(audit, tests, req_ids, requirements)
     component_rows = check_components(audit, components, requirements)
     head = git_head(root)
-    commit_warnings(audit, head, summary_info)
+    check_configuration(audit, args.mode, head, summary_info, problems)
 
-    out = Path(args.out) if args.out else root / "reports/traceability"
+    out = Path(args.out) if args.out else root / defaults["out"]
     evidence = evidence_rows(requirements, problems, statuses, tests)
-    ctx = {"requirements": requirements, "evidence": evidence, "components": component_rows, "head": head,
+    ctx = {"mode": args.mode, "requirements": requirements, "evidence": evidence, "components": component_rows, "head": head,
            "summary_info": summary_info, "summary_rel": audit.rel(summary_path),
            "junit_files": [audit.rel(f) for f in tests.files], "n_problems": len(problems),
            "n_tests": len(tests.cases),
@@ -764,6 +881,7 @@ def main(argv=None):
         print(f"audit: error: cannot write the reports to {out}: {err}", file=sys.stderr)
         return 2
 
+    print(f"audit: {args.mode} audit of {audit.rel(summary_path)} (level {summary_info['level']})")
     print(f"audit: HEAD {head or 'unknown'}; verification summary software commit "
           f"{summary_info['software_commit']}, harness commit {summary_info['harness_commit']}")
     for w in audit.warnings:

@@ -5,6 +5,7 @@ breaks one link, runs the audit and looks for the gap. The clean fixture has one
 (docs with the ten NUREG-0856 subsections), three requirements, one verification problem, a
 summary.json and two JUnit files (GoogleTest and pytest, with a parametrized case).
 """
+import json
 import shutil
 import subprocess
 import sys
@@ -25,12 +26,35 @@ PYTEST = "reports/tests/pytest.xml"
 PROBLEM = "verification/problems/WID-SWING/problem.toml"
 
 pytestmark = pytest.mark.requirements("REQ-QA-004")
+CONFIGURATION_CONTROL = pytest.mark.requirements("REQ-CM-001")
+
+
+def as_test_suite(root):
+    """Options that judge the fixture's summary as the test suite's base-level evidence."""
+    return ("--mode", "test-suite", "--summary", str(root / SUMMARY), "--junit", str(root / "reports/tests/*.xml"),
+            "--out", str(root / "reports/traceability"))
+
+
+FIXTURE_COMMIT = "1111111111111111111111111111111111111111"
+
+
+def git(root, *args):
+    command = ["git", "-C", str(root), "-c", "user.name=t", "-c", "user.email=t@t", "-c", "commit.gpgsign=false"]
+    return subprocess.run(command + list(args), capture_output=True, text=True, check=True).stdout.strip()
 
 
 @pytest.fixture
 def repo(tmp_path):
+    """The clean fixture as a git checkout whose summary.json names its HEAD: evidence of the
+    current commit, as the configuration-control rules demand. The reports are ignored, as in
+    the real repository, so that writing them leaves the checkout clean."""
     root = tmp_path / "repo"
     shutil.copytree(FIXTURE, root)
+    git(root, "init", "-q")
+    (root / ".git/info/exclude").write_text("/reports/\n")
+    git(root, "add", "-A")
+    git(root, "commit", "-qm", "fixture")
+    edit(root, SUMMARY, FIXTURE_COMMIT, git(root, "rev-parse", "HEAD"), count=2)
     return root
 
 
@@ -72,7 +96,7 @@ def test_clean_fixture_passes_and_writes_both_reports(repo, capsys):
     page = (repo / "reports/traceability/rtm.html").read_text()
     assert "<h2>Gaps</h2><ul><li>none</li></ul>" in page
     assert "REQ-WIDGET-001" in page and "Derivation of the numerical method" in page
-    assert "1111111111111111111111111111111111111111" in page     # the summary's commit is stated
+    assert git(repo, "rev-parse", "HEAD") in page     # the summary's commit is stated
     assert "<link" not in page and "<script" not in page          # self-contained
 
 
@@ -208,6 +232,7 @@ def test_problem_gap_is_detected(repo, capsys, old, new, gap):
     assert gap in out
 
 
+@pytest.mark.requirements("REQ-QA-004", "REQ-CM-001")
 def test_problem_missing_from_summary_is_not_run(repo, capsys):
     folder = repo / "verification/problems/WID-EXTRA"
     folder.mkdir()
@@ -216,6 +241,11 @@ def test_problem_missing_from_summary_is_not_run(repo, capsys):
     out, _ = gaps_of(repo, capsys)
     assert "problem WID-EXTRA: not in summary.json: not run (level = 'full')" in out
     assert ",problem,WID-EXTRA,not run" in (repo / "reports/traceability/rtm.csv").read_text()
+    # The test suite's base level leaves a full-level problem out by design: a warning there.
+    edit(repo, SUMMARY, '"level": "full"', '"level": "base"')
+    code, out = run(repo, capsys, *as_test_suite(repo))
+    assert code == 0, out
+    assert "warning: problem WID-EXTRA (level 'full') is not in this base-level summary" in out
 
 
 # ------------------------------------------------------------ test gaps
@@ -307,19 +337,144 @@ def test_summary_missing_or_wrong_schema(repo, capsys, content):
     assert ",problem,WID-SWING,not run" in (repo / "reports/traceability/rtm.csv").read_text()
 
 
-def test_summary_from_another_commit_is_a_warning_not_a_gap(repo, capsys):
-    git = ["git", "-C", str(repo), "-c", "user.name=t", "-c", "user.email=t@t", "-c", "commit.gpgsign=false"]
-    subprocess.run(git + ["init", "-q"], check=True)
-    subprocess.run(git + ["add", "-A"], check=True)
-    subprocess.run(git + ["commit", "-qm", "fixture"], check=True)
-    head = subprocess.run(git + ["rev-parse", "HEAD"], capture_output=True, text=True, check=True).stdout.strip()
-    code, out = run(repo, capsys)
+@CONFIGURATION_CONTROL
+def test_summary_from_another_commit_is_a_gap_in_both_modes(repo, capsys):
+    head = git(repo, "rev-parse", "HEAD")
+    edit(repo, SUMMARY, head, FIXTURE_COMMIT, count=2)
+    out, _ = gaps_of(repo, capsys)
+    assert f"summary.json software.git_commit {FIXTURE_COMMIT} differs from HEAD {head}" in out
+    assert f"summary.json harness.git_commit {FIXTURE_COMMIT} differs from HEAD {head}" in out
+    edit(repo, SUMMARY, '"level": "full"', '"level": "base"')
+    out, _ = gaps_of(repo, capsys, *as_test_suite(repo))
+    assert f"software.git_commit {FIXTURE_COMMIT} differs from HEAD {head}" in out
+
+
+@CONFIGURATION_CONTROL
+def test_summary_of_the_other_level_is_a_gap(repo, capsys):
+    edit(repo, SUMMARY, '"level": "full"', '"level": "base"')
+    out, _ = gaps_of(repo, capsys)
+    assert "summary.json is of level 'base'; the qualification audit judges level 'full' evidence" in out
+    edit(repo, SUMMARY, '"level": "base"', '"level": "full"')
+    out, _ = gaps_of(repo, capsys, *as_test_suite(repo))
+    assert "summary.json is of level 'full'; the test-suite audit judges level 'base' evidence" in out
+
+
+@CONFIGURATION_CONTROL
+@pytest.mark.parametrize("old,new,gap", [
+    ('"git_dirty": false', '"git_dirty": true', "harness.git_dirty is True: the suite ran with uncommitted changes"),
+    ('"compiler"', '"git_dirty_note": "x", "compiler"', None),   # no change of meaning: still clean
+], ids=["dirty harness", "control"])
+def test_evidence_of_uncommitted_work_fails_qualification_and_warns_the_test_suite(repo, capsys, old, new, gap):
+    edit(repo, SUMMARY, old, new)
+    if gap is None:
+        code, out = run(repo, capsys)
+        assert code == 0, out
+        return
+    out, _ = gaps_of(repo, capsys)
+    assert gap in out
+    edit(repo, SUMMARY, '"level": "full"', '"level": "base"')
+    code, out = run(repo, capsys, *as_test_suite(repo))
     assert code == 0, out
-    assert f"warning: summary.json software.git_commit 1111111111111111111111111111111111111111 differs from " \
-           f"HEAD {head}" in out
-    edit(repo, SUMMARY, "1111111111111111111111111111111111111111", head, count=2)
-    code, out = run(repo, capsys)
-    assert code == 0 and "differs from HEAD" not in out
+    assert "warning: verification summary: summary.json " + gap.split(": ", 1)[0] in out
+
+
+@CONFIGURATION_CONTROL
+def test_evidence_outside_a_git_checkout_fails_qualification_and_warns_the_test_suite(repo, capsys):
+    shutil.rmtree(repo / ".git")
+    edit(repo, SUMMARY, '"git_commit": "', '"git_commit": "unknown", "old_commit": "')
+    out, _ = gaps_of(repo, capsys)
+    assert "harness.git_commit" in out and "cannot be compared: current commit unknown (not a git checkout)" in out
+    assert "summary.json software.git_commit is 'unknown': no commit identifies the evidence" in out
+    edit(repo, SUMMARY, '"level": "full"', '"level": "base"')
+    code, out = run(repo, capsys, *as_test_suite(repo))
+    assert code == 0, out
+    assert "cannot be compared: current commit unknown" in out and "is 'unknown'" in out
+
+
+@CONFIGURATION_CONTROL
+def test_software_built_from_uncommitted_changes_fails_qualification(repo, capsys):
+    head = git(repo, "rev-parse", "HEAD")
+    edit(repo, SUMMARY, f'"git_commit": "{head}",\n  "build_type"', f'"git_commit": "{head}-dirty",\n  "build_type"')
+    out, _ = gaps_of(repo, capsys)
+    assert f"summary.json software.git_commit {head}-dirty: built from uncommitted changes" in out
+
+
+CONFIGURATION_GAPS = {
+    "problems folder outside the repository": (
+        '"problems_dir": "verification/problems", "problems_dir_in_repository": true',
+        '"problems_dir": "/tmp/copy/problems", "problems_dir_in_repository": false',
+        "verification summary: the problems folder /tmp/copy/problems is outside the repository"),
+    "filter": ('"filter": []', '"filter": ["WID"]',
+               "verification summary: the suite ran only the problems matching the filter ['WID']"),
+    "no configuration recorded (an older harness)": (
+        '"problems_dir_in_repository": true,', '',
+        "summary.json does not record the run's configuration"),
+    "no inputs recorded for a problem": ('"inputs": {', '"inputs_old": {',
+                                         "problem WID-SWING: summary.json records no input hashes"),
+    "input not readable when the suite ran": (
+        '"verification/problems/WID-SWING/swing.csv": "', '"verification/problems/WID-SWING/swing.csv": null, "x": "',
+        "problem WID-SWING: input verification/problems/WID-SWING/swing.csv was not found"),
+}
+
+
+def compact(repo):
+    """The fixture summary on one line per object, so that edits can span keys."""
+    path = repo / SUMMARY
+    text = json.dumps(json.loads(path.read_text()))
+    path.write_text(text)
+
+
+@CONFIGURATION_CONTROL
+@pytest.mark.parametrize("old,new,gap", CONFIGURATION_GAPS.values(), ids=CONFIGURATION_GAPS.keys())
+def test_configuration_gap_is_detected(repo, capsys, old, new, gap):
+    compact(repo)
+    edit(repo, SUMMARY, old, new)
+    out, _ = gaps_of(repo, capsys)
+    assert gap in out
+
+
+CHANGED_INPUTS = {
+    "scene": ("verification/problems/WID-SWING/scene.toml", "ks = 1.0e9", "ks = 0.55e9", "problem WID-SWING"),
+    "table the scene reads": ("verification/problems/WID-SWING/swing.csv", "1,0.5", "1,0.6", "problem WID-SWING"),
+    "problem.toml": (PROBLEM, 'title = "Widget swings"', 'title = "Widget swung"', "problem WID-SWING"),
+    "harness module": ("verification/harness/vdec_verify/__init__.py", "stand-in", "stand in", "harness"),
+    "vdec binary": ("bin/vdec", "stand-in", "stand in", "vdec binary"),
+}
+
+
+@CONFIGURATION_CONTROL
+@pytest.mark.parametrize("path,old,new,subject", CHANGED_INPUTS.values(), ids=CHANGED_INPUTS.keys())
+def test_an_input_changed_since_the_run_is_a_gap(repo, capsys, path, old, new, subject):
+    edit(repo, path, old, new)
+    out, page = gaps_of(repo, capsys)
+    assert f"{subject}: input {path} differs from the file that ran (SHA-256 " in out
+    (repo / path).unlink()
+    out, _ = gaps_of(repo, capsys)
+    assert f"{subject}: input {path} no longer exists" in out
+
+
+@CONFIGURATION_CONTROL
+def test_a_harness_module_not_recorded_is_a_gap(repo, capsys):
+    (repo / "verification/harness/vdec_verify/extra.py").write_text("")
+    out, _ = gaps_of(repo, capsys)
+    assert "harness: verification/harness/vdec_verify/extra.py is not among the harness files recorded" in out
+
+
+@CONFIGURATION_CONTROL
+def test_a_copy_of_the_problems_outside_the_repository_is_caught(repo, capsys, tmp_path):
+    """The issue's case: a copy of the problems with a changed stiffness, run with the same
+    commit and a clean checkout, recorded the same commit; its inputs are not the repository's."""
+    copy = tmp_path / "copy"
+    shutil.copytree(repo / "verification/problems", copy)
+    edit(copy, "WID-SWING/scene.toml", "ks = 1.0e9", "ks = 0.55e9")
+    summary = json.loads((repo / SUMMARY).read_text())
+    summary["harness"].update(problems_dir=str(copy), problems_dir_in_repository=False)
+    summary["problems"][0]["inputs"] = {str(p): audit.sha256_of(p) for p in sorted((copy / "WID-SWING").iterdir())}
+    (repo / SUMMARY).write_text(json.dumps(summary))
+    out, _ = gaps_of(repo, capsys)
+    assert f"the problems folder {copy} is outside the repository" in out
+    assert ("problem WID-SWING: its runs did not read the repository's verification/problems/WID-SWING/problem.toml"
+            f" (read {copy}/WID-SWING/problem.toml)") in out
 
 
 def test_junit_glob_option_and_unmatched_glob(repo, capsys):

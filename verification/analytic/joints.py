@@ -84,6 +84,11 @@ def cy_reference_executable():
         "its full path, or VDEC_EXECUTABLE to the vdec binary it was built beside")
 
 
+def reference_programs():
+    """The programs this module runs, for the hashes the verification harness records."""
+    return [cy_reference_executable()]
+
+
 def _check_cy_parameters(ks, sn, phi_deg, phi0_deg, roughness):
     if not ks > 0.0:
         raise ValueError(f"ks = {ks}: the shear stiffness must be positive")

@@ -5,6 +5,7 @@ import sys
 from pathlib import Path
 
 from vdec_verify import __doc__ as PACKAGE_DOC
+from vdec_verify.provenance import run_configuration
 from vdec_verify.report import write_reports
 from vdec_verify.runner import discover, run_suite, select
 
@@ -65,7 +66,8 @@ def command_run(args):
     # beside the vdec executable the build put it next to.
     os.environ.setdefault("VDEC_EXECUTABLE", str(vdec.resolve()))
     records = run_suite(entries, vdec.resolve(), out, args.jobs, level=args.level)
-    write_reports(records, out, level=args.level)
+    write_reports(records, out, level=args.level,
+                  configuration=run_configuration(vdec.resolve(), problems, args.filter))
     print_table(records)
     print(f"reports in {out}/ (index.html, report.pdf, summary.json, junit.xml)")
     passed = sum(r["status"] == "pass" for r in records)

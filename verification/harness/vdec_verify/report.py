@@ -22,7 +22,7 @@ from vdec_verify.provenance import harness_info, software_of_runs
 
 SUMMARY_SCHEMA = "vdec.verification/1"
 PROBLEM_FIELDS = ("id", "title", "requirements", "level", "status", "metrics", "runs", "wall_seconds", "cycles",
-                  "scene_sha256", "exit_code", "message")
+                  "scene_sha256", "exit_code", "message", "inputs")
 STATUS_COLOURS = {"pass": "#c8f0c8", "fail": "#f4b8b8", "invalid": "#f8d49a"}
 A4_PORTRAIT = (8.27, 11.69)
 A4_LANDSCAPE = (11.69, 8.27)
@@ -452,12 +452,14 @@ def write_pdf(records, out, harness, software, disagreements):
     return path
 
 
-def write_reports(records, out, level="full"):
+def write_reports(records, out, level="full", configuration=None):
     """Writes every report file into out; returns the summary as written. `level` is the suite
-    level that was run: the traceability audit expects full-level problems only in a full run."""
+    level that was run: the traceability audit expects full-level problems only in a full run.
+    `configuration` (provenance.run_configuration) adds the vdec binary, problems folder, filter
+    and harness files, and the verdict on whether the run qualifies its commit."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    harness = dict(harness_info(), level=level)
+    harness = dict(harness_info(configuration), level=level)
     software, disagreements = software_of_runs(records)
     images = {r["id"]: write_plot(r, out) for r in records}
     write_summary(records, out, harness, software, disagreements)

@@ -24,7 +24,7 @@ from vdec_verify.convergence import convergence_study
 from vdec_verify.extract import ExtractError, Series, extract
 from vdec_verify.norms import ReferenceProblem, compare, evaluate_reference
 from vdec_verify.problem import RUN_FILES, ProblemError, find_reference_function, load_problem
-from vdec_verify.provenance import software_of
+from vdec_verify.provenance import hashes, problem_inputs, software_of
 
 RESULTS_SCHEMA = "vdec.results/1"
 # The suite runs problems side by side on the cores, so each run keeps to one thread (unless the
@@ -285,11 +285,13 @@ def judge(entry, outcomes, level="full"):
     suite's level ("base" or "full"), which decides the refinement levels that ran."""
     record = {"id": entry.id, "title": entry.title, "requirements": list(entry.requirements), "level": None,
               "status": "invalid", "metrics": [], "runs": [], "wall_seconds": 0.0, "cycles": 0, "scene_sha256": "",
-              "exit_code": None, "message": entry.error, "messages": entry.error.splitlines()}
+              "exit_code": None, "message": entry.error, "messages": entry.error.splitlines(),
+              "inputs": hashes([p for p in [entry.folder / "problem.toml"] if p.is_file()])}
     problem = entry.problem
     if problem is None:
         return record
     record.update(title=problem.title, requirements=problem.requirements, level=problem.level)
+    record["inputs"] = problem_inputs(problem, problem.runs_at(level))
     ordered = [outcomes[run.name] for run in problem.runs_at(level)]
     record["runs"] = [o.summary() for o in ordered]
     record["wall_seconds"] = sum(o.wall_seconds for o in ordered)
