@@ -128,7 +128,7 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   // shows; every step then sets them to f(t + dt/2).
   for (int b = 0; b < bl.size(); ++b)
     if (!bl.deformable[b]) setDrivenVelocities(model_, b, model_.time);
-  double scale = 0.0;
+  double initial = 0.0, scale = 0.0;
   for (int b = 0; b < bl.size(); ++b) {
     if (!bl.movesFreely(b)) continue;
     // Driven components are not counted: the kinetic energy the monitor measures is that of
@@ -136,23 +136,23 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     const Vec2 v = bl.velocity[b];
     const double vx = (bl.driven[b] & DriveX) ? 0.0 : v.x, vy = (bl.driven[b] & DriveY) ? 0.0 : v.y;
     const double w = (bl.driven[b] & DriveRotation) ? 0.0 : bl.angularVelocity[b];
-    energy_.initial += 0.5 * (bl.mass[b] * (vx * vx + vy * vy) + bl.inertia[b] * w * w);
+    initial += 0.5 * (bl.mass[b] * (vx * vx + vy * vy) + bl.inertia[b] * w * w);
     scale += (bl.mass[b] * norm(model_.gravity) + norm(bl.appliedForce[b])) * model_.roundingLength;
   }
   const Gridpoints& g = model_.gridpoints;
   for (int i = 0; i < g.size(); ++i) {
     const double vx = (g.driven[i] & DriveX) ? 0.0 : g.velocity[i].x, vy = (g.driven[i] & DriveY) ? 0.0 : g.velocity[i].y;
-    energy_.initial += 0.5 * g.mass[i] * (vx * vx + vy * vy);
+    initial += 0.5 * g.mass[i] * (vx * vx + vy * vy);
   }
   // Stress present at the start (in situ, or joints set by the direct solve) is energy the model
   // was given.
-  for (const Contact& c : model_.contacts) energy_.initial += c.springEnergy;
+  for (const Contact& c : model_.contacts) initial += c.springEnergy;
   const Zones& zn = model_.zones;
   for (int z = 0; z < zn.size(); ++z) {
     const BlockMaterial& mat = model_.blockMaterials[zn.material[z]];
     const auto& n = zn.gridpoint[z];
     const double area = 0.5 * cross(g.position[n[1]] - g.position[n[0]], g.position[n[2]] - g.position[n[0]]);
-    energy_.initial += area * elasticEnergyDensity(zn.sxx[z], zn.syy[z], zn.sxy[z], zn.szz[z], mat.bulk, mat.shear);
+    initial += area * elasticEnergyDensity(zn.sxx[z], zn.syy[z], zn.sxy[z], zn.szz[z], mat.bulk, mat.shear);
   }
   if (hasZones_) {
     // The energy a load does over the elastic displacement it causes: load^2 / stiffness.
@@ -168,8 +168,7 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     }
     scale += gridScale;
   }
-  supplied_ = energy_.initial;
-  energyFloor_ = 1e-9 * std::max(scale + energy_.initial, 1e-200);
+  energy_.open(initial, 1e-9 * std::max(scale + initial, 1e-200));
   buildStages();
 }
 
@@ -192,8 +191,7 @@ void Cycle::buildStages() {
                          checkStiffnessGrowth(t);
                          detection_.requestRescan(t.passedCorners);
                          step_.strainEnergy += t.strainEnergy;
-                         energy_.jointRelease += t.jointRelease;
-                         energy_.slipDissipation += t.slipDissipation;
+                         energy_.addDissipation(t.slipDissipation, t.jointRelease, 0.0);
                          step_.forceScaleSum += t.sumForceMagnitude;
                          step_.forceCount += t.closedContacts;
                        }});
@@ -204,7 +202,7 @@ void Cycle::buildStages() {
     stages_.push_back({"zone-forces", [this] {
                          const ZoneStepTotals t = computeZoneForces(model_, model_.cycle == 0 ? 0.0 : dt_);
                          step_.strainEnergy += t.strainEnergy;
-                         energy_.plasticDissipation += t.plasticDissipation;
+                         energy_.addDissipation(0.0, 0.0, t.plasticDissipation);
                        }});
     if (!model_.loadedEdges.empty()) stages_.push_back({"boundary-tractions", [this] { applyEdgeTractions(model_); }});
     if (!model_.drivenVelocities.empty())
@@ -233,19 +231,15 @@ void Cycle::buildStages() {
 void Cycle::finishStep() {
   const StepTotals t = step_;
   step_ = {};
-  kineticEnergy_ = t.kineticEnergy;
-  strainEnergy_ = t.strainEnergy;
+  energy_.setMechanical(t.kineticEnergy, t.strainEnergy);
   largestUnbalanced_ = t.largestUnbalancedForce;
   largestStepDisplacement_ = t.largestDisplacement;
   meanContactForce_ = t.forceCount ? t.forceScaleSum / t.forceCount : 0.0;
   // Centred in time like the kinetic energy: half of this step's work belongs before the check,
   // half after.
-  supplied_ += 0.5 * t.externalWork;
+  energy_.supplyHalf(t.externalWork);
   checkEnergy();
-  supplied_ += 0.5 * t.externalWork;
-  energy_.externalWork += t.externalWork;
-  lastExternalWork_ = t.externalWork;
-  energy_.dampingDissipation += t.dampingDissipation;
+  energy_.closeStep(t.externalWork, t.dampingDissipation);
   checkReversingMotion(t);
   if (settings_.adaptiveDamping) adaptDamping(t);
   model_.time += dt_;
@@ -270,24 +264,19 @@ void Cycle::adaptDamping(const StepTotals& t) {
 }
 
 void Cycle::checkEnergy() {
-  const double mechanical = kineticEnergy_ + strainEnergy_;
-  monitors_.kineticEnergy = kineticEnergy_;
-  monitors_.strainEnergy = strainEnergy_;
+  const double mechanical = energy_.mechanical();
+  monitors_.kineticEnergy = energy_.kinetic();
+  monitors_.strainEnergy = energy_.strain();
   monitors_.largestUnbalancedForce = largestUnbalanced_;
   monitors_.unbalancedRatio = meanContactForce_ > 0.0 ? largestUnbalanced_ / meanContactForce_
                               : (largestUnbalanced_ > 0.0 ? 1.0 : 0.0);
-  // The energy supplied can return to zero (a bouncing block back at its start), where the
-  // discrete energies' O((w dt)^2) errors are not; so the excess is measured against the
-  // largest energy supplied so far.
-  largestSupplied_ = std::max({largestSupplied_, supplied_, energyFloor_});
-  const double excess = mechanical - supplied_;
-  monitors_.energyRatio = mechanical / largestSupplied_;
-  energy_.largestExcess = std::max(energy_.largestExcess, excess / largestSupplied_);
-  if (!(excess <= kEnergyExcessLimit * largestSupplied_)) {
+  const double excess = energy_.measureExcess();
+  monitors_.energyRatio = mechanical / energy_.largestSupplied();
+  if (!(excess <= kEnergyExcessLimit * energy_.largestSupplied())) {
     std::ostringstream s;
     s << "numerical instability at cycle " << model_.cycle << ", time " << model_.time << " s: the mechanical "
-      << "energy (kinetic " << kineticEnergy_ << " + strain " << strainEnergy_ << " J/m) "
-      << (std::isfinite(mechanical) ? "exceeds the energy supplied (" + std::to_string(supplied_) +
+      << "energy (kinetic " << energy_.kinetic() << " + strain " << energy_.strain() << " J/m) "
+      << (std::isfinite(mechanical) ? "exceeds the energy supplied (" + std::to_string(energy_.supplied()) +
                                           " J/m) by more than " + std::to_string(kEnergyExcessLimit) +
                                           " times the largest energy supplied so far"
                                     : "is not a number")
@@ -310,7 +299,7 @@ void Cycle::checkReversingMotion(const StepTotals& t) {
   // mode is the step's Nyquist motion, reversing every step; a stable mode so fast decays under
   // damping, an unstable one is fed. So, while the motion reverses, watch its kinetic energy.
   ReversingWindow& w = reversing_;
-  const bool reversing = t.kineticEnergy > kReversingFloor * largestSupplied_ &&
+  const bool reversing = t.kineticEnergy > kReversingFloor * energy_.largestSupplied() &&
                          t.kineticLag < kReversingCorrelation * t.kineticEnergy;
   const double damping = alpha_ * dt_ + settings_.localDamping;
   if (damping <= 0.0) return;
@@ -461,12 +450,7 @@ RunReport Cycle::run() {
     report.profile.push_back({s.name, s.seconds});
   }
   report.histories = histories_;
-  energy_.kinetic = kineticEnergy_;
-  energy_.strain = strainEnergy_;
-  report.energy = energy_;
-  // Strain and kinetic energy are those of the positions the last step started from; the work of
-  // that step (done over the motion it produced) comes after them.
-  report.energy.externalWork -= lastExternalWork_;
+  report.energy = energy_.report();
   report.lastMonitors = monitors_;
   report.detectionScans = detection_.scans();
   report.staticSolveSeconds = staticSolveSeconds_;

@@ -7,6 +7,7 @@
 
 #include "contact/contact_detection.hpp"
 #include "contact/contact_forces.hpp"
+#include "run/energy_ledger.hpp"
 #include "run/history.hpp"
 #include "core/model.hpp"
 #include "motion/motion_totals.hpp"
@@ -36,19 +37,6 @@ struct RunSettings {
   // the end (0: never).
   long long snapshotEvery = 0;
   std::function<void(const Model&)> snapshot;
-};
-
-struct EnergyReport {
-  double initial = 0.0;            // kinetic energy at the start
-  double externalWork = 0.0;       // by gravity, applied loads and driven blocks, to the time of the
-                                   // last step's forces (the last step's work counts half)
-  double kinetic = 0.0;            // at the end
-  double strain = 0.0;             // at the end
-  double slipDissipation = 0.0;    // by all contacts, existing and deleted
-  double jointRelease = 0.0;       // elastic energy joints gave up without work (breakage, length)
-  double plasticDissipation = 0.0; // by Mohr-Coulomb zones
-  double dampingDissipation = 0.0; // by mass damping
-  double largestExcess = 0.0;      // max over the run of (kinetic + strain - supplied) / largest supplied
 };
 
 struct StageTiming {
@@ -120,14 +108,8 @@ class Cycle {
   double stepStiffness_ = 0.0;  // the largest joint stiffness (Pa/m) the rigid-block step was set from
   double largestStepDisplacement_ = 0.0;
   double motionClock_ = 0.0;  // running sum of largestStepDisplacement_, for skipping open contacts
-  double supplied_ = 0.0;       // initial energy + external work so far
-  double largestSupplied_ = 0.0;
-  double energyFloor_ = 0.0;    // below this the balance is round-off
-  double strainEnergy_ = 0.0;
-  double kineticEnergy_ = 0.0;
   double meanContactForce_ = 0.0;
   double largestUnbalanced_ = 0.0;
-  double lastExternalWork_ = 0.0;
   StepTotals step_;
   bool hasZones_ = false, hasRigidBlocks_ = false, hasContacts_ = false;
   // The window over which motion reversing every step is watched (checkReversingMotion).
@@ -142,7 +124,7 @@ class Cycle {
   double servoPower_ = 0.0, servoRate_ = 0.0;
   double staticSolveSeconds_ = -1.0;
   double staticSolveResidual_ = -1.0;
-  EnergyReport energy_;
+  EnergyLedger energy_;
   Monitors monitors_;
 };
 
