@@ -229,7 +229,9 @@ def problem_file(problems_dir, problem_id):
         if stripped.startswith("#"):
             started = True
             body = stripped.lstrip("#").strip()
-            if body:
+            if body and current and current[-1].endswith("_"):
+                current[-1] += body    # an identifier broken at its underscore
+            elif body:
                 current.append(body)
             elif current:
                 paragraphs.append(" ".join(current))
@@ -486,7 +488,12 @@ class _Builder:
         self.story.append(markup("Set-up", "h3"))
         pairs = []
         if data is not None:
-            pairs.append(("scene", data.get("scene", "")))
+            scene = Path(os.path.normpath(self.problems_dir / r["id"] / str(data.get("scene", ""))))
+            try:
+                scene = scene.resolve().relative_to(REPOSITORY)
+            except ValueError:
+                pass
+            pairs.append(("scene", str(scene)))
             if data.get("overrides"):
                 pairs.append(("overrides", "; ".join(data["overrides"])))
         pairs.append(("scene SHA-256", markup(text(r.get("scene_sha256")), "mono")))
@@ -514,18 +521,18 @@ class _Builder:
         figures = self.figures_of.get(r["id"]) or []
         if not figures:
             return
-        self.story.append(markup("Figures", "h3"))
         half = (TEXT_WIDTH - 6 * mm) / 2
         narrow = [self.figure(f["png"], half, text(f["caption"])) for f in figures if not f["wide"]]
+        blocks = []
         for i in range(0, len(narrow), 2):
             pair = narrow[i:i + 2] + ([""] if len(narrow[i:i + 2]) == 1 else [])
             grid = Table([pair], colWidths=[half + 3 * mm] * 2)
             grid.setStyle(TableStyle([("VALIGN", (0, 0), (-1, -1), "TOP"), ("LEFTPADDING", (0, 0), (-1, -1), 0),
                                       ("RIGHTPADDING", (0, 0), (-1, -1), 3 * mm)]))
-            self.story.append(grid)
-        for f in figures:
-            if f["wide"]:
-                self.story.append(KeepTogether(self.figure(f["png"], TEXT_WIDTH * 0.9, text(f["caption"]))))
+            blocks.append([grid])
+        blocks += [self.figure(f["png"], TEXT_WIDTH * 0.9, text(f["caption"])) for f in figures if f["wide"]]
+        blocks[0] = [markup("Figures", "h3")] + blocks[0]    # the heading goes with its first figure
+        self.story += [KeepTogether(block) for block in blocks]
 
     def check_table(self, r, numbered):
         self.story.append(markup("Checks", "h3"))
