@@ -32,7 +32,7 @@ def series_figure(metric):
     reference = np.asarray(plot["reference"], dtype=float)
     colour = PASS_COLOUR if metric["pass"] else FAIL_COLOUR
     fig = Figure(figsize=(3.5, 3.3))
-    grid = fig.add_gridspec(2, 1, height_ratios=(3, 2), hspace=0.2, left=0.2, right=0.97, top=0.97, bottom=0.14)
+    grid = fig.add_gridspec(2, 1, height_ratios=(3, 2), hspace=0.2, left=0.2, right=0.97, top=0.93, bottom=0.14)
     top = fig.add_subplot(grid[0])
     bottom = fig.add_subplot(grid[1], sharex=top)
     top.plot(x, reference, color="black", lw=2.5, alpha=0.35, label="closed form")

@@ -86,6 +86,7 @@ STYLES = {
     "small": _style("small", fontSize=7, leading=8.5),
     "cell": _style("cell", fontSize=7, leading=8.5),
     "header": _style("header", fontName=BOLD, fontSize=7, leading=8.5),
+    "item": _style("item", fontSize=7.5, leading=9.2, leftIndent=10, bulletIndent=2, spaceAfter=1.5),
     "note": _style("note", fontSize=6.5, leading=8, textColor=colors.HexColor("#444444")),
     "caption": _style("caption", fontSize=7.5, leading=9, fontName=ITALIC, spaceBefore=2, spaceAfter=8),
     "h1": _style("h1", fontName=BOLD, fontSize=14, leading=17, spaceBefore=6, spaceAfter=8),
@@ -272,7 +273,7 @@ def load_limitations(path=LIMITATIONS_FILE):
         item = text(item)
         item = re.sub(r"\*\*(.+?)\*\*", r"<b>\1</b>", item)
         item = re.sub(r"`(.+?)`", rf'<font name="{MONO}">\1</font>', item)
-        return re.sub(r"\[([^\]]+)\]\(([^)]+)\)", lambda m: f"{m.group(1)} (<i>{_doc_target(m.group(2))}</i>)", item)
+        return re.sub(r"\[([^\]]+)\]\(([^)]+)\)", lambda m: f"<i>{_doc_target(m.group(2))}</i>", item)
 
     return [(title, [rendered(i) for i in entries]) for title, entries in sections]
 
@@ -454,7 +455,7 @@ class _Builder:
             rows.append([para(q.get("id", "")), para(f"{q.get('text', '')} [{q.get('source', '')}]", "note"),
                          para("; ".join(problems) or "none", "note"),
                          para(test_groups(q.get("tests", [])) or "none", "note")])
-        self.story += [_table(rows, [24 * mm, 68 * mm, 38 * mm, None]), PageBreak()]
+        self.story += [_table(rows, [27 * mm, 66 * mm, 38 * mm, None]), PageBreak()]
 
     # one section per problem
     def problems(self):
@@ -650,7 +651,7 @@ class _Builder:
             items.append("the harness ran from a working tree with uncommitted changes: the commit alone does not "
                          "identify the code")
         for item in items or ["None: every check of every problem passed and every run exited as expected."]:
-            self.story.append(markup(f"- {item}", "small"))
+            self.story.append(Paragraph(item, STYLES["item"], bulletText="\u2022"))
         self.story.append(markup("Known limitations", "h3"))
         limitations = load_limitations()
         if limitations is None:
@@ -659,9 +660,8 @@ class _Builder:
         self.story.append(markup("What vdec does not do, as its documentation states (docs/known-limitations.md; "
                                  "each item names its source).", "small"))
         for title, entries in limitations:
-            self.story.append(markup(f"<b>{text(title)}</b>", "small"))
-            for entry in entries:
-                self.story.append(markup(f"- {entry}", "small"))
+            self.story.append(markup(f"<b>{text(title)}</b>", "body"))
+            self.story += [Paragraph(entry, STYLES["item"], bulletText="\u2022") for entry in entries]
 
     def inputs(self):
         inputs = self.harness.get("inputs") or self.summary.get("inputs")
