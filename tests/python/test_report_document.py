@@ -177,3 +177,23 @@ def test_index_html_links_the_pdf_and_the_traceability_matrix(document):
     assert (out / link).resolve() == ROOT / "reports" / "traceability" / "rtm.html"
     summary = json.loads((out / "summary.json").read_text())
     assert summary["harness"]["level"] == "full"
+
+
+@pdftotext
+@pytest.mark.requirements("REQ-QA-001")
+def test_fields_other_parts_of_the_harness_add_are_shown(tmp_path, monkeypatch):
+    """Tolerance basis, mutations and input hashes: fields the report does not know by name still
+    reach the reader."""
+    import vdec_verify.report as report
+    problem = load_problem(PROBLEMS / "RB-TENSION" / "problem.toml")
+    record = made_up_record(problem, 0)
+    record["metrics"][0]["tolerance_basis"] = "derived"
+    record["mutations"] = [{"name": "ks-half", "overrides": ["joint_material[0].ks=5e8"], "caught": True}]
+    digest = "0123456789abcdef" * 4
+    harness = report.harness_info()
+    monkeypatch.setattr(report, "harness_info", lambda: dict(harness, inputs={"verification/problems/x": digest}))
+    write_reports([record], tmp_path, level="full", problems_dir=PROBLEMS)
+    whole = flat(pdf_text(tmp_path / "report.pdf"))
+    assert "tolerance_basis: derived" in whole
+    assert "name: ks-half; overrides: joint_material[0].ks=5e8; caught: True" in whole
+    assert wrapped_in("harness.inputs.verification/problems/x", whole) and digest in whole

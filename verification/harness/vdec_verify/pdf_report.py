@@ -296,6 +296,36 @@ def test_groups(tests):
     return "; ".join(f"{group} ({count})" for group, count in groups.items())
 
 
+KNOWN_HARNESS = {"git_commit", "git_dirty", "version", "date", "host", "python", "pass_rule", "level",
+                 "software_consistent", "software_disagreements"}
+KNOWN_SUMMARY = {"schema", "software", "harness", "counts", "problems"}
+KNOWN_PROBLEM = {"id", "title", "requirements", "level", "status", "metrics", "runs", "wall_seconds", "cycles",
+                 "scene_sha256", "exit_code", "message", "messages", "convergence", "mutations"}
+KNOWN_METRIC = {"quantity", "variant", "extract", "norm", "rtol", "atol", "error", "tolerance", "pass", "numerical",
+                "reference", "justification", "message", "plot", "level"}
+
+
+def leaves(value, prefix=""):
+    """[(dotted key, text)] of the scalars in nested dicts and lists: how fields this module does
+    not know (added to summary.json by other parts of the harness) are still shown."""
+    if isinstance(value, dict):
+        return [leaf for key, item in value.items() for leaf in leaves(item, f"{prefix}.{key}" if prefix else str(key))]
+    if isinstance(value, list) and any(isinstance(item, (dict, list)) for item in value):
+        return [leaf for i, item in enumerate(value) for leaf in leaves(item, f"{prefix}[{i}]")]
+    if isinstance(value, list):
+        return [(prefix, ", ".join(map(str, value)))]
+    return [(prefix, "" if value is None else str(value))]
+
+
+def extras(record, known):
+    return leaves({key: value for key, value in record.items() if key not in known})
+
+
+def value_cell(value):
+    """Hashes in the monospaced font, other values as text."""
+    return markup(text(value), "mono") if re.fullmatch(r"[0-9a-f]{40,128}", value) else para(value, "cell")
+
+
 def environment(software):
     return [("operating system", f"{platform.system()} {platform.release()} ({platform.platform()})"),
             ("compiler of vdec", software.get("compiler", "unknown")),
@@ -357,13 +387,9 @@ class _Builder:
                  ("suite level", f"{h.get('level', 'full')} ({len(self.records)} problems, {len(checks)} checks)"),
                  ("result", f"{passed} problems passed, {len(self.records) - passed} failed; "
                             f"{sum(m['pass'] for m in checks)} of {len(checks)} checks passed")]
-        for key in ("problems_dir", "problems", "filter", "qualified"):
-            if key in h and h[key] not in (None, "", []):
-                pairs.append((key.replace("_", " "), ", ".join(map(str, h[key])) if isinstance(h[key], list)
-                              else str(h[key])))
         pairs += [("host", h.get("host", "unknown"))] + environment(s)
         for key, value in self.hashes():
-            pairs.append((key, markup(text(value), "mono")))
+            pairs.append((key, value if isinstance(value, Paragraph) else markup(text(value), "mono")))
         self.story.append(_key_value_table(pairs))
         for line in h.get("software_disagreements") or []:
             self.story.append(markup(f"<b>Warning:</b> runs by different vdec builds: {text(line)}", "small"))
@@ -379,12 +405,11 @@ class _Builder:
             digest = sha256_of(REQUIREMENTS_FILE)
             if digest:
                 pairs.append((f"{name} SHA-256", digest))
-        inputs = self.harness.get("inputs") or self.summary.get("inputs")
-        if isinstance(inputs, dict):
-            pairs.append(("inputs hashed", f"{len(inputs)} files (listed in section 7)"))
-        for key in ("vdec_sha256", "harness_sha256", "problems_sha256"):
-            if self.harness.get(key):
-                pairs.append((key.replace("_", " "), self.harness[key]))
+        further = self.further_provenance()
+        if len(further) > 12:
+            pairs.append(("further provenance", f"{len(further)} entries of summary.json (section 7)"))
+        else:
+            pairs += [(key, value_cell(value)) for key, value in further]
         return pairs
 
     def sign_off(self):
@@ -499,10 +524,7 @@ class _Builder:
                 pairs.append(("overrides", "; ".join(data["overrides"])))
         pairs.append(("scene SHA-256", markup(text(r.get("scene_sha256")), "mono")))
         published = self.published.get(r["id"], {})
-        for key in ("inputs", "input_sha256"):
-            if isinstance(published.get(key), dict):
-                for name, digest in published[key].items():
-                    pairs.append((f"SHA-256 {name}", markup(text(digest), "mono")))
+        pairs += [(key, value_cell(value)) for key, value in extras(published, KNOWN_PROBLEM)]
         self.story.append(_key_value_table(pairs))
         variants = {v.get("name"): v for v in (data or {}).get("variant", [])}
         if r["runs"]:
@@ -544,10 +566,10 @@ class _Builder:
         rows, extra = [header], []
         for i, (n, m) in enumerate(numbered, start=1):
             variant = f"<i>[{text(m['variant'])}]</i> " if m.get("variant") else ""
-            basis = m.get("tolerance_basis") or m.get("basis")
             notes = [text(m["message"])] if m.get("message") else []
-            if basis:
-                notes.append(f"tolerance {text(basis)}")
+            published = self.published.get(r["id"], {}).get("metrics") or []
+            shown = published[n - 1] if n - 1 < len(published) and isinstance(published[n - 1], dict) else m
+            notes += [f"{text(key)}: {text(value)}" for key, value in extras(shown, KNOWN_METRIC)]
             cell = [markup(variant + text(m["quantity"]), "cell")]
             if notes:
                 cell.append(markup("; ".join(notes), "note"))
@@ -580,16 +602,11 @@ class _Builder:
         if not mutations:
             return
         self.story.append(markup("Mutations (a correct suite rejects each)", "h3"))
-        rows = [["mutation", "overrides", "caught"]]
-        for m in mutations:
-            if not isinstance(m, dict):
-                rows.append([para(m), "", ""])
-                continue
-            caught = m.get("caught")
-            rows.append([para(m.get("name", "")), para("; ".join(m.get("overrides", [])) or m.get("override", ""),
-                                                       "note"),
-                         "yes" if caught else "NO" if caught is not None else "not run"])
-        self.story.append(_table(rows, [45 * mm, None, 18 * mm]))
+        rows = [["#", "mutation"]]
+        for i, mutation in enumerate(mutations, start=1):
+            fields = leaves(mutation) if isinstance(mutation, (dict, list)) else [("", str(mutation))]
+            rows.append([str(i), para("; ".join(f"{k}: {v}" if k else v for k, v in fields), "cell")])
+        self.story.append(_table(rows, [8 * mm, None]))
 
     def study_table(self, study):
         self.story.append(markup(f"Convergence study of {text(study.get('quantity', ''))}", "h3"))
@@ -663,13 +680,19 @@ class _Builder:
             self.story.append(markup(f"<b>{text(title)}</b>", "body"))
             self.story += [Paragraph(entry, STYLES["item"], bulletText="\u2022") for entry in entries]
 
+    def further_provenance(self):
+        """Fields of summary.json's harness and top level beyond those this module knows (input
+        hashes, the problems folder and filter, ...), as (key, text)."""
+        return (leaves({k: v for k, v in self.harness.items() if k not in KNOWN_HARNESS}, "harness")
+                + extras(self.summary, KNOWN_SUMMARY))
+
     def inputs(self):
-        inputs = self.harness.get("inputs") or self.summary.get("inputs")
-        if not isinstance(inputs, dict) or not inputs:
+        further = self.further_provenance()
+        if len(further) <= 12:
             return
-        self.heading("7 Hashed inputs", 0, "inputs")
-        rows = [["file", "SHA-256"]] + [[para(name, "note"), markup(text(digest), "mono")]
-                                        for name, digest in sorted(inputs.items())]
+        self.heading("7 Further provenance", 0, "inputs")
+        self.story.append(markup("Every further field of summary.json's provenance, as written (hashes are SHA-256)."))
+        rows = [["field", "value"]] + [[para(key, "note"), value_cell(value)] for key, value in further]
         self.story.append(_table(rows, [None, 100 * mm]))
 
     def build(self, path):
