@@ -385,11 +385,11 @@ class _Builder:
                  ("harness", f"vdec_verify {h.get('version', 'unknown')}, commit {h.get('git_commit', 'unknown')}"),
                  ("uncommitted changes", dirty),
                  ("suite level", f"{h.get('level', 'full')} ({len(self.records)} problems, {len(checks)} checks)"),
-                 ("result", f"{passed} problems passed, {len(self.records) - passed} failed; "
+                 ("result", f"{passed} of {len(self.records)} problems passed, {len(self.records) - passed} failed; "
                             f"{sum(m['pass'] for m in checks)} of {len(checks)} checks passed")]
         pairs += [("host", h.get("host", "unknown"))] + environment(s)
         for key, value in self.hashes():
-            pairs.append((key, value if isinstance(value, Paragraph) else markup(text(value), "mono")))
+            pairs.append((key, value if isinstance(value, Paragraph) else value_cell(value)))
         self.story.append(_key_value_table(pairs))
         for line in h.get("software_disagreements") or []:
             self.story.append(markup(f"<b>Warning:</b> runs by different vdec builds: {text(line)}", "small"))
