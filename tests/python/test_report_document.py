@@ -197,3 +197,13 @@ def test_fields_other_parts_of_the_harness_add_are_shown(tmp_path, monkeypatch):
     assert "tolerance_basis: derived" in whole
     assert "name: ks-half; overrides: joint_material[0].ks=5e8; caught: True" in whole
     assert wrapped_in("harness.inputs.verification/problems/x", whole) and digest in whole
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_a_failure_message_longer_than_a_page_does_not_stop_the_report(tmp_path):
+    problem = load_problem(PROBLEMS / "RB-TENSION" / "problem.toml")
+    record = made_up_record(problem, 0)
+    record["status"], record["message"] = "fail", "run: exited 5 " + "(the energy monitor stopped it) " * 400
+    record["metrics"][0].update(message="cannot extract: " + "no such history " * 500, **{"pass": False})
+    write_reports([record], tmp_path, level="full", problems_dir=PROBLEMS)
+    assert (tmp_path / "report.pdf").read_bytes().startswith(b"%PDF")

@@ -191,7 +191,9 @@ def _table(rows, widths, header_rows=1, extra=()):
     (numbers are never wrapped), Paragraphs wrap."""
     rows = [[Paragraph(text(c), STYLES["header"]) if i < header_rows and isinstance(c, str) else c for c in row]
             for i, row in enumerate(rows)]
-    table = Table(rows, colWidths=widths, repeatRows=header_rows, splitByRow=1)
+    # splitInRow: a row taller than a page (a long failure message) continues on the next page
+    # instead of stopping the document with a LayoutError.
+    table = Table(rows, colWidths=widths, repeatRows=header_rows, splitByRow=1, splitInRow=1)
     style = [("FONT", (0, 0), (-1, -1), REGULAR, 7), ("FONT", (0, 0), (-1, header_rows - 1), BOLD, 7),
              ("BACKGROUND", (0, 0), (-1, header_rows - 1), colors.HexColor("#e4e4e4")),
              ("GRID", (0, 0), (-1, -1), 0.3, colors.HexColor("#999999")), ("VALIGN", (0, 0), (-1, -1), "TOP"),
@@ -203,7 +205,7 @@ def _table(rows, widths, header_rows=1, extra=()):
 
 def _key_value_table(pairs, key_width=38 * mm):
     rows = [[para(k, "cell"), v if isinstance(v, Paragraph) else para(v, "cell")] for k, v in pairs]
-    table = Table(rows, colWidths=[key_width, TEXT_WIDTH - key_width])
+    table = Table(rows, colWidths=[key_width, TEXT_WIDTH - key_width], splitInRow=1)
     table.setStyle(TableStyle([("GRID", (0, 0), (-1, -1), 0.3, colors.HexColor("#999999")),
                                ("BACKGROUND", (0, 0), (0, -1), colors.HexColor("#eeeeee")),
                                ("VALIGN", (0, 0), (-1, -1), "TOP"),
@@ -475,8 +477,7 @@ class _Builder:
             "reports/tests/*.xml."))
         rows = [["requirement", "text and source", "problems (result here)", "tests"]]
         for q in requirements:
-            problems = [f"{p} ({status.get(p, 'not run').upper() if p in status else 'not run'})"
-                        for p in q.get("problems", [])]
+            problems = [f"{p} ({status[p].upper() if p in status else 'not run'})" for p in q.get("problems", [])]
             rows.append([para(q.get("id", "")), para(f"{q.get('text', '')} [{q.get('source', '')}]", "note"),
                          para("; ".join(problems) or "none", "note"),
                          para(test_groups(q.get("tests", [])) or "none", "note")])
