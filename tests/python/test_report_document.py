@@ -207,3 +207,7 @@ def test_a_failure_message_longer_than_a_page_does_not_stop_the_report(tmp_path)
     record["metrics"][0].update(message="cannot extract: " + "no such history " * 500, **{"pass": False})
     write_reports([record], tmp_path, level="full", problems_dir=PROBLEMS)
     assert (tmp_path / "report.pdf").read_bytes().startswith(b"%PDF")
+    if shutil.which("pdftotext") is not None:    # cut in the tables, given in full after them
+        whole = flat(pdf_text(tmp_path / "report.pdf"))
+        assert "(in full in section 4.1)" in whole and "(in full below the table)" in whole
+        assert "no such history " * 499 in whole + " "

@@ -109,6 +109,16 @@ def para(value, style="cell"):
     return Paragraph(text(value), STYLES[style])
 
 
+CELL_TEXT = 400   # characters of a message inside a table row; the rest follows the table
+
+
+def shortened(value, where):
+    """A message for a table cell: a row cannot be taller than a page, so a long one is cut there
+    and given in full `where` (the cut is said in the cell)."""
+    value = "" if value is None else str(value)
+    return value if len(value) <= CELL_TEXT else f"{value[:CELL_TEXT]} ... (in full {where})"
+
+
 def markup(value, style="body"):
     return Paragraph(value, STYLES[style])
 
@@ -191,9 +201,7 @@ def _table(rows, widths, header_rows=1, extra=()):
     (numbers are never wrapped), Paragraphs wrap."""
     rows = [[Paragraph(text(c), STYLES["header"]) if i < header_rows and isinstance(c, str) else c for c in row]
             for i, row in enumerate(rows)]
-    # splitInRow: a row taller than a page (a long failure message) continues on the next page
-    # instead of stopping the document with a LayoutError.
-    table = Table(rows, colWidths=widths, repeatRows=header_rows, splitByRow=1, splitInRow=1)
+    table = Table(rows, colWidths=widths, repeatRows=header_rows, splitByRow=1)
     style = [("FONT", (0, 0), (-1, -1), REGULAR, 7), ("FONT", (0, 0), (-1, header_rows - 1), BOLD, 7),
              ("BACKGROUND", (0, 0), (-1, header_rows - 1), colors.HexColor("#e4e4e4")),
              ("GRID", (0, 0), (-1, -1), 0.3, colors.HexColor("#999999")), ("VALIGN", (0, 0), (-1, -1), "TOP"),
@@ -458,7 +466,8 @@ class _Builder:
         for i, r in enumerate(self.records, start=1):
             good = sum(m["pass"] for m in r["metrics"])
             rows.append([para(r["id"]), r["status"].upper(), para(", ".join(r["requirements"])),
-                         f"{good}/{len(r['metrics'])}", f"{r['wall_seconds']:.2f}", para(r["message"], "note")])
+                         f"{good}/{len(r['metrics'])}", f"{r['wall_seconds']:.2f}",
+                         para(shortened(r["message"], f"in section 4.{i}"), "note")])
             extra.append(("BACKGROUND", (1, i), (1, i), STATUS_COLOURS.get(r["status"], colors.white)))
         self.story += [_table(rows, [40 * mm, 14 * mm, 34 * mm, 12 * mm, 12 * mm, None], extra=extra), PageBreak()]
 
@@ -564,10 +573,12 @@ class _Builder:
             self.story.append(markup("No check could be evaluated; see the message above.", "small"))
             return
         header = ["#", "quantity", "norm", "numerical", "reference", "error", "tolerance", "tol/err", "result"]
-        rows, extra = [header], []
+        rows, extra, long_notes = [header], [], []
         for i, (n, m) in enumerate(numbered, start=1):
             variant = f"<i>[{text(m['variant'])}]</i> " if m.get("variant") else ""
-            notes = [text(m["message"])] if m.get("message") else []
+            notes = [text(shortened(m["message"], "below the table"))] if m.get("message") else []
+            if len(m.get("message") or "") > CELL_TEXT:
+                long_notes.append(f"<b>#{n}:</b> {text(m['message'])}")
             published = self.published.get(r["id"], {}).get("metrics") or []
             shown = published[n - 1] if n - 1 < len(published) and isinstance(published[n - 1], dict) else m
             notes += [f"{text(key)}: {text(value)}" for key, value in extras(shown, KNOWN_METRIC)]
@@ -585,6 +596,7 @@ class _Builder:
         widths = [7 * mm, None, 17 * mm, 24 * mm, 24 * mm, 15.5 * mm, 15.5 * mm, 15 * mm, 12 * mm]
         self.story.append(_table(rows, widths, extra=extra + [("ALIGN", (3, 1), (6, -1), "RIGHT"),
                                                               ("FONT", (3, 1), (6, -1), REGULAR, 6.6)]))
+        self.story += [markup(note, "small") for note in long_notes]
 
     def justifications(self, numbered):
         """Each justification once, with the checks that give it."""
