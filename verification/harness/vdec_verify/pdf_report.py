@@ -469,7 +469,7 @@ class _Builder:
                          f"{good}/{len(r['metrics'])}", f"{r['wall_seconds']:.2f}",
                          para(shortened(r["message"], f"in section 4.{i}"), "note")])
             extra.append(("BACKGROUND", (1, i), (1, i), STATUS_COLOURS.get(r["status"], colors.white)))
-        self.story += [_table(rows, [40 * mm, 14 * mm, 34 * mm, 12 * mm, 12 * mm, None], extra=extra), PageBreak()]
+        self.story += [_table(rows, [38 * mm, 13 * mm, 44 * mm, 11 * mm, 11 * mm, None], extra=extra), PageBreak()]
 
     def matrix(self):
         self.heading("3 Requirement-to-evidence matrix", 0, "matrix")
