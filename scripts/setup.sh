@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libcgal-dev libboost-dev libgtest-dev libbenchmark-dev
   libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libssl-dev
   python3-numpy python3-scipy python3-matplotlib python3-pytest
+  python3-reportlab poppler-utils  # report.pdf is typeset with ReportLab; the tests read it with pdftotext
   clang libclang-rt-dev libomp-dev  # scripts/fuzz.sh: clang, its libFuzzer and sanitizer runtimes, OpenMP
 )
 missing=()

@@ -8,6 +8,8 @@ import io
 import json
 import math
 import re
+import shutil
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -423,9 +425,16 @@ def test_summary_html_and_pdf_show_the_studies(full_suite):
     assert f'{two["observed_order"]:.3f}' in section and "+- 0.1" in section and f'{two["gci"]:.3e}' in section
     assert html.escape("observed order of final normal force m g") in page
     for pid in ("FX-ORDER-ONE", "FX-ORDER-TWO"):
-        assert (out / f"{pid}.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        assert (out / f"{pid}-convergence.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        assert f'src="{pid}-convergence.png"' in page
     pdf = (out / "report.pdf").read_bytes()
-    assert len(re.findall(rb"/Type\s*/Page\b", pdf)) == 1 + 1 + 2
+    assert pdf.startswith(b"%PDF")
+    if shutil.which("pdftotext") is None:
+        pytest.skip("pdftotext (poppler-utils) is not installed")
+    text = " ".join(subprocess.run(["pdftotext", str(out / "report.pdf"), "-"], capture_output=True, text=True,
+                                   check=True).stdout.split())
+    assert "5 Convergence studies" in text and "work-precision" in text
+    assert f'{two["observed_order"]:.3f}' in text and f'{two["gci"]:.3e}' in text
 
 
 @pytest.mark.requirements("REQ-QA-005")

@@ -4,13 +4,13 @@ Usage, from the repository root:
 
     PYTHONPATH=verification/harness:verification /usr/bin/python3 -m vdec_verify run --vdec build/vdec \
         [--problems verification/problems] [--filter ID_SUBSTRING_OR_GLOB ...] [--level base|full] \
-        [--jobs 2] [--out reports/verification]
+        [--jobs 2] [--out reports/verification] [--revision 1]
     PYTHONPATH=verification/harness:verification /usr/bin/python3 -m vdec_verify check [--problems ...]
 
 `run` runs every selected problem (one folder per problem under --problems, each with a
 problem.toml; see vdec_verify.problem for its keys), compares each check with its closed-form
-reference and writes summary.json, index.html, report.pdf, junit.xml, one PNG plot per problem
-and each run's results.json under OUT/runs/<ID>[/<variant>]/. It prints a table and ends with
+reference and writes summary.json, index.html, report.pdf, junit.xml, the PNG figures of each
+problem and each run's results.json under OUT/runs/<ID>[/<variant>]/. It prints a table and ends with
 the line "N passed, N failed". Exit status: 0 when every selected problem passes, 1 when any
 fails or is invalid (a problem.toml that cannot be run as written is reported as "invalid",
 never skipped), 2 on a usage error. `check` only loads and validates the problem files.
@@ -23,7 +23,8 @@ substrings or matches one of the given globs (case-insensitive).
 Modules: problem (load and validate problem.toml), extract (what a check reads from a run),
 norms (error norms, the pass rule and the independence guard), convergence (observed order,
 GCI and asymptotic ratio of a convergence study), runner (runs the solver in parallel), report
-(the report files), provenance (software and harness information).
+(the report files), figures (their figures), pdf_report (report.pdf, typeset with ReportLab),
+provenance (software and harness information).
 """
 
 __version__ = "1.0"

@@ -25,6 +25,7 @@ def build_parser():
                      help="base: only level = 'base' problems (the test suite); full: all (default)")
     run.add_argument("--jobs", type=int, default=2, help="solver runs at a time (default 2)")
     run.add_argument("--out", default="reports/verification", help="report folder")
+    run.add_argument("--revision", default="1", help="revision printed on report.pdf's title page (default 1)")
     check = commands.add_parser("check", help="only load and validate the problem files")
     check.add_argument("--problems", default="verification/problems")
     check.add_argument("--filter", nargs="+", action="extend", default=[], metavar="PATTERN")
@@ -67,7 +68,8 @@ def command_run(args):
     os.environ.setdefault("VDEC_EXECUTABLE", str(vdec.resolve()))
     records = run_suite(entries, vdec.resolve(), out, args.jobs, level=args.level)
     write_reports(records, out, level=args.level,
-                  configuration=run_configuration(vdec.resolve(), problems, args.filter))
+                  configuration=run_configuration(vdec.resolve(), problems, args.filter),
+                  problems_dir=problems, revision=args.revision)
     print_table(records)
     print(f"reports in {out}/ (index.html, report.pdf, summary.json, junit.xml)")
     passed = sum(r["status"] == "pass" for r in records)

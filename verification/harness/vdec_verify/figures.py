@@ -1,0 +1,216 @@
+"""The figures of the reports, drawn with matplotlib's Figure objects (no pyplot, no display) into
+PNG files beside index.html, which report.pdf places with the same captions.
+
+Every figure shows the error as well as the values: a series check gets the two curves and,
+below them on the same abscissa, vdec minus the closed form; the scalar checks of a problem get
+one panel of error over tolerance (1 is the limit of the pass rule); a convergence study gets
+error against zone size and error against wall time (work-precision).
+"""
+import io
+import math
+import textwrap
+
+import numpy as np
+from matplotlib.figure import Figure
+from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
+
+DPI = 150
+PASS_COLOUR, FAIL_COLOUR = "tab:green", "tab:red"
+
+
+def png_bytes(fig):
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=DPI)
+    return buffer.getvalue()
+
+
+def series_figure(metric):
+    """Two stacked panels on one abscissa: both curves, then vdec minus the closed form."""
+    plot = metric["plot"]
+    x = np.asarray(plot["x"], dtype=float)
+    numerical = np.asarray(plot["numerical"], dtype=float)
+    reference = np.asarray(plot["reference"], dtype=float)
+    colour = PASS_COLOUR if metric["pass"] else FAIL_COLOUR
+    fig = Figure(figsize=(3.5, 3.3))
+    grid = fig.add_gridspec(2, 1, height_ratios=(3, 2), hspace=0.2, left=0.2, right=0.97, top=0.93, bottom=0.14)
+    top = fig.add_subplot(grid[0])
+    bottom = fig.add_subplot(grid[1], sharex=top)
+    top.plot(x, reference, color="black", lw=2.5, alpha=0.35, label="closed form")
+    top.plot(x, numerical, color=colour, lw=1.0, ls="--", label="vdec")
+    top.set_ylabel(plot["y_label"], fontsize=7)
+    top.legend(fontsize=6, loc="best")
+    top.tick_params(labelsize=6, labelbottom=False)
+    bottom.plot(x, numerical - reference, color=colour, lw=1.0)
+    bottom.axhline(0.0, color="black", lw=0.6, alpha=0.6)
+    bottom.set_ylabel("vdec - closed form", fontsize=7)
+    bottom.set_xlabel(plot["x_label"], fontsize=7)
+    bottom.tick_params(labelsize=6)
+    bottom.yaxis.get_offset_text().set_fontsize(6)
+    return png_bytes(fig)
+
+
+def ratio_of(metric):
+    """error / tolerance, the fraction of its allowance a check uses (1 is the limit); None when
+    the check has no numbers or no allowance (an exact `equal` check)."""
+    error, tolerance = metric.get("error"), metric.get("tolerance")
+    if error is None or tolerance is None or not (math.isfinite(error) and math.isfinite(tolerance)):
+        return None
+    if tolerance == 0.0:
+        return None
+    return error / tolerance
+
+
+def scalar_figure(numbered):
+    """One horizontal bar per scalar check (numbered: [(number, metric)]) of |error| / tolerance on a
+    log axis, the scalar checks' error panel: the ratios span decades. An upper bound met with room
+    (signed error below 0) is hatched."""
+    rows = [(n, m, ratio_of(m)) for n, m in numbered]
+    shown = [abs(r) for _, _, r in rows if r]
+    low = 10.0 ** math.floor(math.log10(min(shown + [1e-3]))) / 3
+    high = max(shown + [3.0]) * 3
+    height = 1.0 + 0.17 * len(rows)
+    fig = Figure(figsize=(6.6, height))
+    ax = fig.add_axes([0.08, 0.6 / height, 0.88, 1 - 0.72 / height])
+    for i, (n, m, ratio) in enumerate(rows):
+        colour = PASS_COLOUR if m["pass"] else FAIL_COLOUR
+        if not ratio:
+            if m.get("error") is None:
+                label = "no value"
+            elif m["norm"] == "equal":
+                label = "exact (equal)"
+            elif ratio == 0.0:
+                label = "error 0"
+            else:
+                label = f"error {m['error']:.3g} against a tolerance of 0"
+            ax.text(low * 1.3, i, label, va="center", fontsize=6, color=colour)
+            continue
+        ax.barh(i, abs(ratio) - low, left=low, color="white" if ratio < 0 else colour, edgecolor=colour,
+                hatch="////" if ratio < 0 else None, height=0.6)
+    ax.set_xscale("log")
+    ax.axvline(1.0, color="black", ls="--", lw=0.8)
+    ax.set_yticks(range(len(rows)), [f"#{n}" for n, _, _ in rows], fontsize=6)
+    ax.set_ylim(len(rows) - 0.5, -0.5)
+    ax.set_xlim(low, high)
+    ax.set_xlabel("|error| / tolerance (the pass rule's limit is 1; hatched: an upper bound with room below it)",
+                  fontsize=7)
+    ax.tick_params(axis="x", labelsize=6)
+    return png_bytes(fig)
+
+
+def _study_points(study, abscissa):
+    """(x, error, names) of the levels whose error and abscissa can go on log axes."""
+    points = [(x, e, name) for x, e, name in zip(study[abscissa], study["error"], study["levels"])
+              if x is not None and e is not None and math.isfinite(x) and math.isfinite(e) and x > 0 and e > 0]
+    return [p[0] for p in points], [p[1] for p in points], [p[2] for p in points]
+
+
+def _study_axes(ax, study, x, errors, names, colour, xlabel, title):
+    ax.set_title(title, fontsize=7, color="black" if study["pass"] else "tab:red")
+    ax.set_xlabel(xlabel, fontsize=7)
+    ax.set_ylabel(f"error ({study.get('norm', '')})", fontsize=7)
+    ax.tick_params(labelsize=6)
+    if not errors:
+        ax.text(0.5, 0.5, "no positive finite errors to plot", ha="center", va="center", transform=ax.transAxes,
+                fontsize=7, color="tab:red")
+        return False
+    ax.loglog(x, errors, marker="o", color=colour, lw=0.8, label="vdec")
+    for xi, ei, name in zip(x, errors, names):
+        ax.annotate(name, (xi, ei), textcoords="offset points", xytext=(4, 4), fontsize=6)
+    return True
+
+
+def _data_ticks(axis, values, at_most=6):
+    """Tick labels at the data (at most `at_most` of them, ends kept): a study spans a decade or two,
+    where log axes label few decades and their minor labels collide."""
+    values = sorted(set(values))
+    if len(values) > at_most:
+        step = math.ceil((len(values) - 1) / (at_most - 1))
+        values = values[::step] + ([values[-1]] if (len(values) - 1) % step else [])
+    axis.set_major_locator(FixedLocator(values))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:.3g}"))
+    axis.set_minor_formatter(NullFormatter())
+
+
+def _draw_order(ax, study):
+    """Error against zone size on log-log axes, with the expected slope through the finest level and
+    the least-squares fit over the asymptotic levels."""
+    colour = "tab:green" if study["pass"] else "tab:red"
+    observed = study["observed_order"]
+    head = f"{'PASS' if study['pass'] else 'FAIL'}: observed order " + \
+        ("(none)" if observed is None else f"{observed:.3f}") + \
+        f", expected {study['expected_order']:g} +- {study['order_tolerance']:g}"
+    gci = "" if study["gci"] is None else f"; GCI {study['gci']:.2e}, ratio {study['asymptotic_ratio']:.3f}"
+    title = "\n".join(textwrap.wrap(f"convergence of {study.get('quantity', '')}", 52)[:2] + [head + gci])
+    h, errors, names = _study_points(study, "h")
+    if _study_axes(ax, study, h, errors, names, colour, "zone size h", title):
+        span = np.array([min(h), max(h)])
+        expected = study["expected_order"]
+        ax.loglog(span, errors[-1] * (span / h[-1]) ** expected, color="black", ls="--", lw=1, alpha=0.6,
+                  label=f"slope {expected:g} (expected)")
+        fit = [(hi, ei) for hi, ei, n in zip(h, errors, names) if n in study.get("fit_levels", [])]
+        if observed is not None and len(fit) >= 2:
+            fh = np.array([f[0] for f in fit])
+            constant = math.exp(np.mean(np.log([f[1] for f in fit])) - observed * np.mean(np.log(fh)))
+            fh = np.array([fh.min(), fh.max()])
+            ax.loglog(fh, constant * fh ** observed, color=colour, ls=":", lw=1.5, label=f"fit, slope {observed:.2f}")
+        _data_ticks(ax.xaxis, h)
+        _data_ticks(ax.yaxis, errors)
+        ax.legend(fontsize=6, loc="best")
+
+
+def _draw_work(ax, study):
+    """Work-precision: error against the wall seconds of each level's run."""
+    colour = "tab:green" if study["pass"] else "tab:red"
+    title = "\n".join(textwrap.wrap(f"work-precision of {study.get('quantity', '')}", 52)[:2]
+                      + ["error against wall time per level"])
+    seconds, errors, names = _study_points(study, "wall_seconds")
+    if _study_axes(ax, study, seconds, errors, names, colour, "wall seconds of the run", title):
+        _data_ticks(ax.xaxis, [min(seconds), max(seconds)])
+        _data_ticks(ax.yaxis, errors)
+        ax.legend(fontsize=6, loc="best")
+
+
+def study_figure(study):
+    """Error against zone size (with the expected slope) and against wall time."""
+    fig = Figure(figsize=(6.8, 2.9))
+    grid = fig.add_gridspec(1, 2, left=0.09, right=0.98, top=0.80, bottom=0.16, wspace=0.3)
+    _draw_order(fig.add_subplot(grid[0]), study)
+    _draw_work(fig.add_subplot(grid[1]), study)
+    return png_bytes(fig)
+
+
+def _result(metric):
+    if metric["pass"]:
+        return "PASS"
+    return "INVALID" if (metric.get("message") or "").startswith("invalid reference") else "FAIL"
+
+
+def _ratio(value):
+    return "" if value is None else f"{value:.3e}"
+
+
+def problem_figures(record):
+    """The figures of one problem, in order: [{"name": file name, "png": bytes, "caption": text,
+    "wide": bool}]; the check numbers are those of the problem's check table (1 = first metric)."""
+    pid, figures = record["id"], []
+    numbered = list(enumerate(record["metrics"], start=1))
+    series = [(n, m) for n, m in numbered if (m.get("plot") or {}).get("kind") == "series"]
+    scalars = [(n, m) for n, m in numbered if (m.get("plot") or {}).get("kind") == "scalar"]
+    for n, m in series:
+        variant = f"[{m['variant']}] " if m.get("variant") else ""
+        figures.append({"name": f"{pid}-check{n}.png", "png": series_figure(m), "wide": False, "caption":
+                        f"{pid} check #{n}, {variant}{m['quantity']}: vdec (dashed) against the closed form (grey); "
+                        f"below, vdec minus the closed form. {m['norm']} error {_ratio(m['error'])}, tolerance "
+                        f"{_ratio(m['tolerance'])}: {_result(m)}."})
+    if scalars:
+        figures.append({"name": f"{pid}-scalars.png", "png": scalar_figure(scalars), "wide": True, "caption":
+                        f"{pid}: error of each scalar check (numbered as in the check table) over its tolerance, on "
+                        "a log scale; the dashed line at 1 is the pass rule's limit, a bar past it fails. An upper "
+                        "bound met with room to spare (vdec below the bound) is hatched."})
+    study = record.get("convergence")
+    if study is not None:
+        figures.append({"name": f"{pid}-convergence.png", "png": study_figure(study), "wide": True, "caption":
+                        f"{pid}: convergence of {study.get('quantity', '')}. Left: error against zone size h on "
+                        "log-log axes, with the expected slope through the finest level and the least-squares fit. "
+                        "Right: work-precision, error against the wall seconds of each level's run."})
+    return figures
