@@ -44,7 +44,8 @@ def made_up_record(problem, serial):
     status = "pass" if all(m["pass"] for m in metrics) else "fail"
     return {"id": problem.id, "title": problem.title, "requirements": problem.requirements, "level": problem.level,
             "status": status, "metrics": metrics, "runs": runs, "wall_seconds": 0.01 * len(runs), "cycles": 10,
-            "scene_sha256": "ab" * 32, "exit_code": 0, "message": "", "messages": []}
+            "scene_sha256": "ab" * 32, "exit_code": 0, "message": "", "messages": [],
+            "inputs": {"verification/problems/" + problem.id + "/problem.toml": "cd" * 32}}
 
 
 @pytest.fixture(scope="module")
@@ -191,7 +192,8 @@ def test_fields_other_parts_of_the_harness_add_are_shown(tmp_path, monkeypatch):
     record["mutations"] = [{"name": "ks-half", "overrides": ["joint_material[0].ks=5e8"], "caught": True}]
     digest = "0123456789abcdef" * 4
     harness = report.harness_info()
-    monkeypatch.setattr(report, "harness_info", lambda: dict(harness, inputs={"verification/problems/x": digest}))
+    monkeypatch.setattr(report, "harness_info",
+                        lambda configuration=None: dict(harness, inputs={"verification/problems/x": digest}))
     write_reports([record], tmp_path, level="full", problems_dir=PROBLEMS)
     whole = flat(pdf_text(tmp_path / "report.pdf"))
     assert "tolerance_basis: derived" in whole
