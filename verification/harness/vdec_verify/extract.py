@@ -3,7 +3,8 @@
 Each extractor takes the run's results dict (results.json) and the check's extract table and
 returns a scalar (float) or a Series (x, y arrays) compared point by point with the reference.
 Histories are results["histories"][NAME] = {"t": [...], "value": [...]}. An optional
-window = [t0, t1] keeps the samples with t0 <= t <= t1.
+window = [t0, t1] keeps the samples with t0 <= t <= t1. A history with any non-finite sample
+(NaN or infinity, written as null in results.json), inside the window or not, is an ExtractError.
 
     kind           keys (optional in brackets)        returns
     final          history                            last value
@@ -60,6 +61,13 @@ def read_history(results, name):
         raise ExtractError(f"history '{name}' is not a {{t: [...], value: [...]}} pair of number lists ({e})") from e
     if t.ndim != 1 or t.shape != value.shape:
         raise ExtractError(f"history '{name}': t has {t.size} samples but value has {value.size}")
+    bad = np.flatnonzero(~(np.isfinite(t) & np.isfinite(value)))
+    if bad.size:
+        # A run that went NaN half-way must not pass on its finite part (a crossing before it, a
+        # value or period read from it): any non-finite sample makes the whole history unusable.
+        i = int(bad[0])
+        raise ExtractError(f"history '{name}' has {bad.size} non-finite samples, the first at sample {i} "
+                           f"(t = {t[i]}, value = {value[i]})")
     return t, value
 
 
