@@ -20,6 +20,7 @@ the edge of the two faces, and the wall moves about 1 % further. This solves the
 With `outer` = 60 a the outer boundary moves the wall's displacement by about (R_p / outer)^2,
 below 1e-3.
 """
+import functools
 import math
 
 import numpy as np
@@ -113,3 +114,20 @@ def tunnel_1d(*, a, outer, p0, pi, szz0, bulk, shear, cohesion, friction_deg, di
     yielding = sig.min(axis=1) - n_phi * sig.max(axis=1) + k < 1e-6 * p0
     return {"r": r, "ur": u, "r_mid": rm, "srr": sig[:, 0], "stt": sig[:, 1], "szz": sig[:, 2],
             "plastic_radius": float(rm[yielding].max()) if np.any(yielding) else a}
+
+
+@functools.lru_cache(maxsize=8)
+def _solution(a, outer, p0, pi, szz0, bulk, shear, cohesion, friction_deg, dilation_deg, elements, increments):
+    return tunnel_1d(a=a, outer=outer, p0=p0, pi=pi, szz0=szz0, bulk=bulk, shear=shear, cohesion=cohesion,
+                     friction_deg=friction_deg, dilation_deg=dilation_deg, elements=elements, increments=increments)
+
+
+def radial_displacement(*, r, a, outer, p0, pi, szz0, bulk, shear, cohesion, friction_deg, dilation_deg,
+                        elements=400, increments=50):
+    """u_r (outward positive) of tunnel_1d at the radii r, interpolated linearly between its nodes;
+    a radius below a (a gridpoint of the wall moved inward) reads the wall's value. A field
+    reference: the harness passes the samples' r. The solution is computed once per set of
+    parameters (it takes about half a second)."""
+    solution = _solution(float(a), float(outer), float(p0), float(pi), float(szz0), float(bulk), float(shear),
+                         float(cohesion), float(friction_deg), float(dilation_deg), int(elements), int(increments))
+    return np.interp(np.asarray(r, dtype=float), solution["r"], solution["ur"])
