@@ -2,6 +2,7 @@
 the tolerance's basis, zero tolerances, cycle bounds below the cycle limit, loose tolerances
 flagged, and abscissae that do not come from the solver's own joint measures (REQ-QA-002)."""
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -172,11 +173,44 @@ def test_an_abscissa_from_the_prescribed_motion_or_a_scale_shows_a_scaled_displa
                              "un": {"t": list(t), "value": list(0.5 * t)},     # the solver's, half the motion
                              "rise": {"t": list(t), "value": list(-t)}}}
     own = extract({"kind": "curve", "x": "un", "y": "sn"}, results, 0)
-    prescribed = extract({"kind": "curve", "x_rate": 1.0, "y": "sn"}, results, 0)
+    prescribed = extract({"kind": "curve", "x_rate": 2.0, "y": "sn"}, results, 0)
     block = extract({"kind": "curve", "x": "rise", "x_scale": -1.0, "y": "sn"}, results, 0)
     np.testing.assert_allclose(own.x, 0.5 * t)
-    np.testing.assert_allclose(prescribed.x, t)
+    np.testing.assert_allclose(prescribed.x, 2.0 * t)
     np.testing.assert_allclose(block.x, t)
-    assert prescribed.x_label == "1 t"
+    assert prescribed.x_label == "2 t"
     assert extract({"kind": "final", "history": "rise", "scale": -1.0}, results, 0) == 1.0
     assert extract({"kind": "value_at", "history": "rise", "t": 0.5, "scale": -2.0}, results, 0) == 1.0
+
+
+@REQ
+def test_the_reports_list_the_mutations_and_flag_loose_tolerances(tmp_path):
+    from vdec_verify.report import write_reports
+    record = run(tmp_path, VALID)
+    write_reports([record], tmp_path / "out", level="full")
+    page = (tmp_path / "out" / "index.html").read_text()
+    assert "mutation mass-up (oscillator.mass=2600.0): caught by check: q (error 0.04 &gt; tolerance 1e-05)" in page
+    assert "tolerance derived, tolerance/error" in page and "LOOSE (for review)" in page
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    (problem,) = summary["problems"]
+    assert problem["mutations"][0]["caught"] is True and problem["metrics"][0]["loose"] is True
+
+
+VDEC = Path(os.environ.get("VDEC_EXECUTABLE", str(Path(__file__).resolve().parents[2] / "build" / "vdec")))
+PROBLEMS = Path(__file__).resolve().parents[2] / "verification" / "problems"
+# Problems whose runs take a fraction of a second: their mutations run in the test suite too.
+QUICK = ["RB-INCLINE-STICK", "RB-INCLINE-COHESION", "RB-TENSION", "RB-REST-SETTLE", "RB-STABILITY-FRAC",
+         "CY-CLOSURE", "RB-SHEAR-CNS"]
+
+
+@REQ
+@pytest.mark.skipif(not VDEC.is_file(), reason="vdec is not built")
+def test_the_quick_problems_catch_their_mutations(tmp_path):
+    # A shear stiffness at 0.55 of its value passed both incline problems when they bounded the
+    # slide by twice a kn-based value; the instability variants' runs must not finish normally.
+    entries = [e for e in discover(PROBLEMS) if e.id in QUICK]
+    assert [e.id for e in entries] == sorted(QUICK)
+    records = run_suite(entries, VDEC, tmp_path, jobs=2, progress=None, level="full")
+    for record in records:
+        assert record["status"] == "pass", (record["id"], record["message"])
+        assert record["mutations"] and all(m["caught"] for m in record["mutations"]), record["id"]

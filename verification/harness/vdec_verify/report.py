@@ -246,6 +246,25 @@ def _ratio(value):
     return "" if value is None else f"{value:.3e}"
 
 
+def _review_note(metric):
+    """The tolerance's basis and, for review, its ratio to the error met (LOOSE above 20)."""
+    basis = metric.get("tolerance_basis")
+    if not basis:
+        return ""
+    ratio = metric.get("tolerance_over_error")
+    ratio_text = "" if ratio is None else f", tolerance/error {ratio:.3g}"
+    return f"tolerance {basis}{ratio_text}" + (" LOOSE (for review)" if metric.get("loose") else "")
+
+
+def _mutation_lines(record):
+    """One line per mutation of a full suite: its overrides and whether the checks caught it."""
+    lines = []
+    for m in record.get("mutations") or ():
+        verdict = "caught by " + m["rejected_by"][0] if m["caught"] else "NOT CAUGHT: " + m["message"]
+        lines.append(f"mutation {m['name']} ({', '.join(m['overrides'])}): {verdict}")
+    return lines
+
+
 def _provenance_lines(software, harness, disagreements):
     dirty = {True: " (uncommitted changes)", False: "", None: ""}[harness["git_dirty"]]
     lines = [f"vdec {software['version']}, commit {software['git_commit']}, build {software['build_type']}, "
@@ -317,7 +336,8 @@ def write_html(records, out, harness, software, disagreements, images):
                 cells += f'<td colspan="7">{e(r["message"])}</td>'
             else:
                 variant = f'<i>[{e(m["variant"])}]</i> ' if m["variant"] else ""
-                note = f'<br><small class="note">{e(m["message"])}</small>' if m["message"] else ""
+                note = "".join(f'<br><small class="note">{e(text)}</small>' for text in (m["message"], _review_note(m))
+                               if text)
                 result = _result_label(m)
                 cells += (f'<td>{variant}{e(m["quantity"])}{note}<details><summary>justification</summary>'
                           f'{e(m["justification"])}</details></td><td>{e(str(m["norm"]))}</td>'
@@ -327,6 +347,8 @@ def write_html(records, out, harness, software, disagreements, images):
             rows.append(f"<tr>{cells}</tr>")
         if r["status"] != "pass" and r["message"] and r["metrics"]:
             rows.append(f'<tr><td colspan="9" class="note">{e(r["message"])}</td></tr>')
+        for line in _mutation_lines(r):
+            rows.append(f'<tr><td colspan="9" class="note">{e(line)}</td></tr>')
         if images.get(r["id"]):
             rows.append(f'<tr><td colspan="9" class="plot"><img src="{e(images[r["id"]])}" '
                         f'alt="{e(r["id"])}: vdec against the closed form"></td></tr>')
@@ -391,8 +413,9 @@ def _metric_lines(metric, width):
         lines.append(f"      {metric['norm']}: numerical {_number(metric['numerical'])}, analytic "
                      f"{_number(metric['reference'])}, error {_ratio(metric['error'])}, "
                      f"tolerance {_ratio(metric['tolerance'])}")
-    if metric["message"]:
-        lines += textwrap.wrap(metric["message"], width, initial_indent="      ", subsequent_indent="      ")
+    for text in (metric["message"], _review_note(metric)):
+        if text:
+            lines += textwrap.wrap(text, width, initial_indent="      ", subsequent_indent="      ")
     lines += textwrap.wrap("justification: " + metric["justification"], width, initial_indent="      ",
                            subsequent_indent="      ")
     return lines
@@ -446,6 +469,8 @@ def write_pdf(records, out, harness, software, disagreements):
                 lines += _metric_lines(m, 110)
             if r.get("convergence") is not None:
                 lines += [""] + _study_lines(r["convergence"], 110)
+            for line in _mutation_lines(r):
+                lines += textwrap.wrap(line, 110)
             fig.text(0.05, text_top, "\n".join(lines[:70]), va="top", ha="left", family="monospace", fontsize=6.5)
             pdf.savefig(fig)
         info = pdf.infodict()
