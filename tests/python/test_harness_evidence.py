@@ -1,6 +1,6 @@
 """Checks that can fail (issue 12): mutations the checks must reject, the expected stop reason,
 the tolerance's basis, zero tolerances, cycle bounds below the cycle limit, loose tolerances
-flagged, and abscissae that do not come from the solver's own joint measures (REQ-QA-002)."""
+flagged, and abscissae that do not come from the solver's own joint measures (REQ-QA-008)."""
 import json
 import os
 from pathlib import Path
@@ -15,7 +15,7 @@ from vdec_verify.runner import LOOSE_TOLERANCE_RATIO, discover, run_suite
 from problem_files import write_problem
 
 FAKE_VDEC = Path(__file__).parent / "fixtures" / "harness" / "fake_vdec.py"
-REQ = pytest.mark.requirements("REQ-QA-002")
+REQ = pytest.mark.requirements("REQ-QA-008")
 
 # The fake's normal force is m g = 25000 N/m within its 1e-7 noise.
 VALID = '''id = "X-1"

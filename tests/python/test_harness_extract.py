@@ -126,7 +126,7 @@ def test_extraction_failures_say_what_is_missing(table, results, phrase):
         extract(table, results, 0)
 
 
-@pytest.mark.requirements("REQ-QA-001")
+@pytest.mark.requirements("REQ-QA-001", "REQ-QA-008")
 @pytest.mark.parametrize("table", [
     {"kind": "final", "history": "h"},
     {"kind": "max", "history": "h", "window": [0.0, 0.3]},

@@ -444,6 +444,14 @@ def _positive(errors, table, key, where):
     return float(value)
 
 
+def _folder_name(errors, value, where):
+    """A run's name (it names a folder), or None with the error recorded."""
+    if not isinstance(value, str) or not VARIANT_NAME.match(value):
+        errors.add(where, f"{value!r} is required: letters, digits, '.', '_' or '-' (it names a folder)")
+        return None
+    return value
+
+
 def _refinement(errors, table, overrides, variant_names, problem_level):
     """The [refinement] table as a Refinement, or None when it is unusable (errors recorded)."""
     if not isinstance(table, dict):
@@ -473,10 +481,9 @@ def _refinement(errors, table, overrides, variant_names, problem_level):
     for i, lv in enumerate(raw):
         where = f"refinement.level[{i}]"
         _check_unknown(errors, lv, LEVEL_KEYS, f"{where}.")
-        name = lv.get("name")
-        if not isinstance(name, str) or not VARIANT_NAME.match(name):
-            errors.add(f"{where}.name", f"{name!r} is required: letters, digits, '.', '_' or '-' (it names a folder)")
-            name = None
+        name = _folder_name(errors, lv.get("name"), f"{where}.name")
+        if name is None:
+            pass
         elif name in RUN_FILES:
             errors.add(f"{where}.name", f"'{name}' is the name of a file in the plain run's folder")
         elif name in variant_names:
@@ -569,9 +576,8 @@ def load_problem(path):
             errors.add(where, "must be a table")
             continue
         _check_unknown(errors, v, VARIANT_KEYS, f"{where}.")
-        name = v.get("name")
-        if not isinstance(name, str) or not VARIANT_NAME.match(name):
-            errors.add(f"{where}.name", f"{name!r} is required: letters, digits, '.', '_' or '-' (it names a folder)")
+        name = _folder_name(errors, v.get("name"), f"{where}.name")
+        if name is None:
             continue
         if name in RUN_FILES:
             errors.add(f"{where}.name", f"'{name}' is the name of a file in the plain run's folder")
@@ -731,9 +737,8 @@ def _mutations(errors, data, run_names):
     for i, m in enumerate(raw):
         where = f"mutation[{i}]"
         _check_unknown(errors, m, MUTATION_KEYS, f"{where}.")
-        name = m.get("name")
-        if not isinstance(name, str) or not VARIANT_NAME.match(name):
-            errors.add(f"{where}.name", f"{name!r} is required: letters, digits, '.', '_' or '-' (it names a folder)")
+        name = _folder_name(errors, m.get("name"), f"{where}.name")
+        if name is None:
             continue
         if any(other.name == name for other in mutations):
             errors.add(f"{where}.name", f"'{name}' is used by an earlier mutation")

@@ -255,6 +255,16 @@ def order_metric(check, refinement, study):
             "tolerance_basis": check.tolerance_basis, "message": study["message"]}
 
 
+def evaluate_check(check, outcome, outcomes, where=""):
+    """(metric, invalid-reference message or None) of one check; never raises."""
+    try:
+        return judge_check(check, outcome, outcomes), None
+    except (ReferenceProblem, LookupError) as e:
+        return unevaluated_metric(check, f"invalid reference: {e}"), f"check {check.index + 1}{where}: {e}"
+    except Exception as e:  # a harness fault on odd data: report it against this check, not the suite
+        return unevaluated_metric(check, f"harness error: {type(e).__name__}: {e}"), None
+
+
 def judge_study(problem, check, outcomes, level):
     """(metrics, convergence, invalid messages) of the studied check over the levels of the suite.
 
@@ -263,14 +273,9 @@ def judge_study(problem, check, outcomes, level):
     levels = problem.refinement.levels_at(level)
     per_level, invalid = [], []
     for lv in levels:
-        try:
-            metric = judge_check(check, outcomes[lv.name])
-        except (ReferenceProblem, LookupError) as e:
-            metric = unevaluated_metric(check, f"invalid reference: {e}")
-            invalid.append(f"check {check.index + 1} (level {lv.name}): {e}")
-        except Exception as e:  # a harness fault on odd data: report it against this check, not the suite
-            metric = unevaluated_metric(check, f"harness error: {type(e).__name__}: {e}")
+        metric, unusable = evaluate_check(check, outcomes[lv.name], None, f" (level {lv.name})")
         per_level.append(metric)
+        invalid += [unusable] if unusable else []
     runs = [outcomes[lv.name] for lv in levels]
     study = convergence_study(
         names=[lv.name for lv in levels], h=[lv.h for lv in levels], error=[m["error"] for m in per_level],
@@ -299,14 +304,9 @@ def judge_checks(problem, checks, outcomes, level):
             metrics += study_metrics
             problems += invalid
             continue
-        try:
-            metric = judge_check(check, outcomes[check.variant], outcomes)
-        except (ReferenceProblem, LookupError) as e:
-            metric = unevaluated_metric(check, f"invalid reference: {e}")
-            problems.append(f"check {check.index + 1}: {e}")
-        except Exception as e:  # a harness fault on odd data: report it against this check, not the suite
-            metric = unevaluated_metric(check, f"harness error: {type(e).__name__}: {e}")
+        metric, unusable = evaluate_check(check, outcomes[check.variant], outcomes)
         metrics.append(metric)
+        problems += [unusable] if unusable else []
     for metric in metrics:
         ratio = tolerance_over_error(metric)
         metric["tolerance_over_error"] = ratio
