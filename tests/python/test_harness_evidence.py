@@ -67,6 +67,8 @@ def run(tmp_path, text, level="full"):
     ("rtol = 1e-5\n", "rtol = 0.0\n", r"check\[0\]\.rtol", "both zero"),
     ("rtol = 1e-5\n", "rtol = 0.0\natol = 0\n", r"check\[0\]\.rtol", "both zero"),
     ('expect_stop = "time"\n', "", "expect_stop", "is required for a run that exits 0"),
+    ("[[check]]", '[[variant]]\nname = "unstable"\nexpect_exit = 5\n\n[[check]]', r"variant\[0\]\.expect_message",
+     "is required with expect_exit = 5"),
     ('expect_stop = "time"', 'expect_stop = "converged"', "expect_stop", "is not a stop reason"),
     ('extract = { kind = "final", history = "normal_force" }',
      'extract = { kind = "curve", x = "us", x_rate = 1.0, y = "tau" }', r"check\[0\]\.extract\.x",

@@ -19,8 +19,8 @@ Keys of problem.toml:
     name = "frac-0.5"             required; letters, digits, ".", "_", "-"; the run goes in runs/<ID>/<name>/
     overrides = ["solver.frac=0.5"]    added after the problem's overrides
     expect_exit = 0               default: the problem's expect_exit
-    expect_message = "..."        optional, with a nonzero expect_exit: text the run's stderr must hold,
-                                  so that a stop counts only when it is for the expected reason
+    expect_message = "..."        required with a nonzero expect_exit (and only then): text the run's stderr
+                                  must hold, so that a stop counts only when it is for the expected reason
     expect_stop = "time"          default: the problem's expect_stop (with expect_exit 0)
 
     [[mutation]]                  at least one: a wrong model the checks must reject (run by the full suite)
@@ -591,6 +591,10 @@ def load_problem(path):
         if not isinstance(message, str) or ("expect_message" in v and (not message or code == 0)):
             errors.add(f"{where}.expect_message", "must be non-empty text, and goes with a nonzero expect_exit")
             message = ""
+        elif code != 0 and "expect_message" not in v:
+            errors.add(f"{where}.expect_message", f"is required with expect_exit = {code}: text of the message the "
+                                                  "stop must print (naming the setting to change, e.g. "
+                                                  "\"lower solver.frac\"), so that a stop for another reason fails")
         stop = _expected_stop(errors, v.get("expect_stop", expect_stop), code, f"{where}.expect_stop",
                               "expect_stop" in v)
         variants.append(Run(name, overrides + extra, code, message, stop))
