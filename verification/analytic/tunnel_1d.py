@@ -20,7 +20,6 @@ the edge of the two faces, and the wall moves about 1 % further. This solves the
 With `outer` = 60 a the outer boundary moves the wall's displacement by about (R_p / outer)^2,
 below 1e-3.
 """
-import functools
 import math
 
 import numpy as np
@@ -116,10 +115,16 @@ def tunnel_1d(*, a, outer, p0, pi, szz0, bulk, shear, cohesion, friction_deg, di
             "plastic_radius": float(rm[yielding].max()) if np.any(yielding) else a}
 
 
-@functools.lru_cache(maxsize=8)
-def _solution(a, outer, p0, pi, szz0, bulk, shear, cohesion, friction_deg, dilation_deg, elements, increments):
-    return tunnel_1d(a=a, outer=outer, p0=p0, pi=pi, szz0=szz0, bulk=bulk, shear=shear, cohesion=cohesion,
-                     friction_deg=friction_deg, dilation_deg=dilation_deg, elements=elements, increments=increments)
+_SOLUTIONS = {}
+
+
+def _solution(*key):
+    """tunnel_1d for the parameters in key (in its keyword order), computed once per process."""
+    if key not in _SOLUTIONS:
+        names = ("a", "outer", "p0", "pi", "szz0", "bulk", "shear", "cohesion", "friction_deg", "dilation_deg",
+                 "elements", "increments")
+        _SOLUTIONS[key] = tunnel_1d(**dict(zip(names, key)))
+    return _SOLUTIONS[key]
 
 
 def radial_displacement(*, r, a, outer, p0, pi, szz0, bulk, shear, cohesion, friction_deg, dilation_deg,
