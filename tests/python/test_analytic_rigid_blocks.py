@@ -58,6 +58,9 @@ def test_known_values():
     # 45 degrees, phi = 20: 9.81 * sin45 * (1 - tan20) = 9.81 * 0.7071067812 * 0.6360297657 = 4.411958821 m/s^2
     assert rb.incline_acceleration(g=9.81, theta_deg=45, phi_deg=20) == pytest.approx(4.411958821, rel=1e-9)
     assert rb.incline_half_acceleration(g=9.81, theta_deg=45, phi_deg=20) == pytest.approx(2.2059794105, rel=1e-9)
+    # held at 20 degrees: 2500 * 9.81 * sin20 / (1e10 * 1) = 2500 * 9.81 * 0.3420201433 / 1e10 = 8.388044015e-7 m
+    assert rb.incline_elastic_slide(mass=2500.0, g=9.81, theta_deg=20.0, ks=1e10, contact_length=1.0) == \
+        pytest.approx(8.388044015e-7, rel=1e-9)
     # 20 degrees, phi = 30: friction holds
     assert rb.incline_acceleration(g=9.81, theta_deg=20, phi_deg=30) == 0.0
     # damping xi = 40 / (2 * 200) = 0.1: delta = 2 pi * 0.1 / sqrt(0.99) = 0.6283185307 * 1.0050378153 = 0.6314838834

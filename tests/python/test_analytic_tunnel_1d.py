@@ -57,3 +57,16 @@ def test_bad_input_is_refused():
         tunnel_1d(**dict(TUNNEL, outer=0.5), szz0=-30e6, dilation_deg=0.0)
     with pytest.raises(ValueError):
         tunnel_1d(**TUNNEL, szz0=-30e6, dilation_deg=40.0)
+
+
+@REQ
+def test_radial_displacement_is_the_solution_at_the_given_radii():
+    from analytic.tunnel_1d import radial_displacement
+    params = dict(TUNNEL, szz0=-30e6, dilation_deg=0.0)
+    s = tunnel_1d(**params)
+    # At the nodes it is the solution's u_r; a radius inside the wall reads the wall's value.
+    u = radial_displacement(r=np.array([0.98, 1.0, s["r"][10]]), **params)
+    np.testing.assert_allclose(u, [s["ur"][0], s["ur"][0], s["ur"][10]], rtol=1e-12)
+    # With szz = p0 in situ it puts the wall 0.95 % beyond Salencon's closed form (which takes
+    # szz as the intermediate stress): MC-TUNNEL's set-up, which the closed form does not match.
+    assert u[1] / salencon_wall() - 1.0 == pytest.approx(9.5e-3, abs=3e-4)

@@ -198,6 +198,7 @@ VALID = '''id = "X-1"
 title = "t"
 requirements = ["REQ-QA-005"]
 scene = "scene.toml"
+expect_stop = "time"
 overrides = ["fake.error=1e-9"]
 
 [refinement]
@@ -230,6 +231,12 @@ reference = { function = "rigid_blocks.resting_normal_force", params = { mass = 
 norm = "scalar"
 rtol = 1e-3
 justification = "j"
+tolerance_basis = "derived"
+
+[[mutation]]
+name = "error-10-percent"
+overrides = ["fake.error=0.1"]
+why = "Every history 10 % off: the checks must see it."
 '''
 
 PLAIN_CHECK = '''
@@ -240,6 +247,7 @@ reference = { constant = 25000.0 }
 norm = "scalar"
 rtol = 1e-3
 justification = "j"
+tolerance_basis = "derived"
 '''
 
 

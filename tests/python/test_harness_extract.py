@@ -126,10 +126,32 @@ def test_extraction_failures_say_what_is_missing(table, results, phrase):
         extract(table, results, 0)
 
 
-@pytest.mark.requirements("REQ-QA-001")
-def test_nan_in_a_history_is_passed_on_not_hidden():
-    results = results_with(h=(T, np.where(T > 0.5, math.nan, T)))
-    assert math.isnan(extract({"kind": "final", "history": "h"}, results, 0))
+@pytest.mark.requirements("REQ-QA-001", "REQ-QA-008")
+@pytest.mark.parametrize("table", [
+    {"kind": "final", "history": "h"},
+    {"kind": "max", "history": "h", "window": [0.0, 0.3]},
+    {"kind": "value_at", "history": "h", "t": 0.25},
+    {"kind": "crossing_time", "history": "h", "level": 0.5},
+    {"kind": "period", "history": "h", "window": [0.0, 0.45]},
+    {"kind": "history", "history": "h", "window": [0.0, 0.45]},
+    {"kind": "curve", "x": "ramp", "y": "h", "window": [0.0, 0.45]},
+])
+def test_a_history_that_turns_non_finite_is_rejected_whatever_is_read_from_it(table):
+    # What is read (a crossing at t = 0.008, a value at 0.25, periods and windows before 0.5) is
+    # finite; the run went NaN (or infinite) after t = 0.5, which must not pass for a result.
+    t = np.linspace(0.0, 1.0, 101)
+    wave = np.sin(2.0 * np.pi * t / 0.2)
+    for bad in (math.nan, math.inf, -math.inf):
+        results = results_with(h=(t, np.where(t > 0.5, bad, wave)), ramp=(t, t))
+        with pytest.raises(ExtractError, match="history 'h' has 50 non-finite samples, the first at sample 51"):
+            extract(table, results, 0)
+    # null in results.json (how vdec writes a NaN) reads as non-finite too.
+    results = results_with(h=(t, wave), ramp=(t, t))
+    results["histories"]["h"]["value"][70] = None
+    with pytest.raises(ExtractError, match="history 'h' has 1 non-finite samples, the first at sample 70"):
+        extract(table, results, 0)
+    # The same history without the bad samples is read.
+    extract(table, results_with(h=(t, wave), ramp=(t, t)), 0)
 
 
 @pytest.mark.requirements("REQ-QA-006")

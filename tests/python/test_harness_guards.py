@@ -19,6 +19,7 @@ VALID = '''id = "X-1"
 title = "t"
 requirements = ["REQ-QA-002"]
 scene = "scene.toml"
+expect_stop = "time"
 
 [[check]]
 quantity = "q"
@@ -27,6 +28,12 @@ reference = { function = "rigid_blocks.resting_normal_force", params = { mass = 
 norm = "scalar"
 rtol = 1e-3
 justification = "j"
+tolerance_basis = "derived"
+
+[[mutation]]
+name = "error-10-percent"
+overrides = ["fake.error=0.1"]
+why = "Every history 10 % off: the checks must see it."
 '''
 
 

@@ -59,7 +59,7 @@ def test_statuses_exit_code_and_the_last_line(suite):
     assert lines[-1] == "4 passed, 5 failed"
     for pid, status in EXPECTED_STATUS.items():
         assert any(line.split()[:2] == [status, pid] for line in lines), pid
-    assert "[9/9]" in suite["stderr"]       # progress, one line per run
+    assert "[17/17]" in suite["stderr"]     # progress, one line per run: 9 runs, 8 of the mutations
 
 
 @pytest.mark.requirements("REQ-QA-001")

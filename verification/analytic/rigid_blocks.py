@@ -48,6 +48,17 @@ def incline_acceleration(*, g, theta_deg, phi_deg, cohesion=0.0, contact_length=
     return _incline_net_acceleration(g, theta_deg, phi_deg, cohesion, contact_length, mass)
 
 
+def incline_elastic_slide(*, mass, g, theta_deg, ks, contact_length):
+    """Static shear displacement of a block held on a joint inclined at theta:
+
+        us = m g sin(theta) / (ks L),
+
+    the joint's linear shear law tau = ks us carrying the weight's component along the slope,
+    tau L = m g sin(theta) (Coulomb slip joint below its strength, NUREG/CR-5429).
+    """
+    return mass * g * math.sin(math.radians(theta_deg)) / (ks * contact_length)
+
+
 def incline_half_acceleration(*, g, theta_deg, phi_deg, cohesion=0.0, contact_length=1.0, mass=1.0):
     """a / 2: the slope of the down-slope displacement against t^2, since x = a t^2 / 2."""
     return 0.5 * incline_acceleration(g=g, theta_deg=theta_deg, phi_deg=phi_deg, cohesion=cohesion,

@@ -113,3 +113,26 @@ def tunnel_1d(*, a, outer, p0, pi, szz0, bulk, shear, cohesion, friction_deg, di
     yielding = sig.min(axis=1) - n_phi * sig.max(axis=1) + k < 1e-6 * p0
     return {"r": r, "ur": u, "r_mid": rm, "srr": sig[:, 0], "stt": sig[:, 1], "szz": sig[:, 2],
             "plastic_radius": float(rm[yielding].max()) if np.any(yielding) else a}
+
+
+_SOLUTIONS = {}
+
+
+def _solution(*key):
+    """tunnel_1d for the parameters in key (in its keyword order), computed once per process."""
+    if key not in _SOLUTIONS:
+        names = ("a", "outer", "p0", "pi", "szz0", "bulk", "shear", "cohesion", "friction_deg", "dilation_deg",
+                 "elements", "increments")
+        _SOLUTIONS[key] = tunnel_1d(**dict(zip(names, key)))
+    return _SOLUTIONS[key]
+
+
+def radial_displacement(*, r, a, outer, p0, pi, szz0, bulk, shear, cohesion, friction_deg, dilation_deg,
+                        elements=400, increments=50):
+    """u_r (outward positive) of tunnel_1d at the radii r, interpolated linearly between its nodes;
+    a radius below a (a gridpoint of the wall moved inward) reads the wall's value. A field
+    reference: the harness passes the samples' r. The solution is computed once per set of
+    parameters (it takes about half a second)."""
+    solution = _solution(float(a), float(outer), float(p0), float(pi), float(szz0), float(bulk), float(shear),
+                         float(cohesion), float(friction_deg), float(dilation_deg), int(elements), int(increments))
+    return np.interp(np.asarray(r, dtype=float), solution["r"], solution["ur"])

@@ -44,6 +44,8 @@ A check passes when e_abs <= atol + rtol * s, with
 where x_h, f_h are vdec's values and x, f the closed-form reference. Reported error = e_abs / s
 and tolerance = (atol + rtol s) / s (when s = 0: error = e_abs, tolerance = atol).
 A problem passes when all its checks (and its convergence study, if any) pass and every run exits
-with its expected code."""
+with its expected code (and message) and stops for its expected reason (run.stop_reason); in the
+full suite, also every one of its mutations (a deliberately wrong model) must be caught: some
+check on its runs fails, or one of them ends otherwise than expected."""
 
 __doc__ += "\nTHE PASS RULE\n\n" + PASS_RULE + "\n"

@@ -3,14 +3,21 @@
 Each extractor takes the run's results dict (results.json) and the check's extract table and
 returns a scalar (float) or a Series (x, y arrays) compared point by point with the reference.
 Histories are results["histories"][NAME] = {"t": [...], "value": [...]}. An optional
-window = [t0, t1] keeps the samples with t0 <= t <= t1.
+window = [t0, t1] keeps the samples with t0 <= t <= t1. A history with any non-finite sample
+(NaN or infinity, written as null in results.json), inside the window or not, is an ExtractError.
 
     kind           keys (optional in brackets)        returns
-    final          history                            last value
-    max, min, mean history [window]                   over the (windowed) history
-    value_at       history, t                         value interpolated linearly at time t
-    history        history [window]                   Series (t, value); reference f(t, **params)
-    curve          x, y [window]                      Series (x, y) of two histories; reference f(x, **params)
+    final          history [scale]                    last value
+    max, min, mean history [window] [scale]           over the (windowed) history
+    value_at       history, t [scale]                 value interpolated linearly at time t
+    history        history [window] [scale]           Series (t, value); reference f(t, **params)
+    curve          x, y [window] [x_scale]            Series (x, y) of two histories; reference f(x, **params)
+    curve          x_rate, y [window]                 Series (x_rate t, y): y against a motion prescribed at
+                                                      the constant rate x_rate from t = 0 (e.g. a driven
+                                                      block's velocity), sampled at y's times
+
+scale (x_scale for a curve's abscissa) multiplies the history's values, e.g. -1 to read a
+closure (positive closing) from a block's displacement (positive up); default 1.
     fit_t2         history [window] [t0]              s of the least-squares fit value = c0 + s (t - t0)^2,
                                                       t0 = the given t0, else the window start, else the first time
     slope          history [window]                   least-squares slope of value against t
@@ -60,6 +67,13 @@ def read_history(results, name):
         raise ExtractError(f"history '{name}' is not a {{t: [...], value: [...]}} pair of number lists ({e})") from e
     if t.ndim != 1 or t.shape != value.shape:
         raise ExtractError(f"history '{name}': t has {t.size} samples but value has {value.size}")
+    bad = np.flatnonzero(~(np.isfinite(t) & np.isfinite(value)))
+    if bad.size:
+        # A run that went NaN half-way must not pass on its finite part (a crossing before it, a
+        # value or period read from it): any non-finite sample makes the whole history unusable.
+        i = int(bad[0])
+        raise ExtractError(f"history '{name}' has {bad.size} non-finite samples, the first at sample {i} "
+                           f"(t = {t[i]}, value = {value[i]})")
     return t, value
 
 
@@ -75,7 +89,7 @@ def _windowed(t, value, window, name):
 def _history_in_window(results, table):
     name = table["history"]
     t, value = read_history(results, name)
-    return _windowed(t, value, table.get("window"), name)
+    return _windowed(t, value * float(table.get("scale", 1.0)), table.get("window"), name)
 
 
 def final(results, table):
@@ -98,6 +112,7 @@ def mean(results, table):
 def value_at(results, table):
     name = table["history"]
     t, value = read_history(results, name)
+    value = value * float(table.get("scale", 1.0))
     when = float(table["t"])
     if t.size == 0 or not t[0] <= when <= t[-1]:
         span = f"[{t[0]}, {t[-1]}]" if t.size else "(no samples)"
@@ -111,8 +126,18 @@ def history(results, table):
 
 
 def curve(results, table):
-    tx, x = read_history(results, table["x"])
     ty, y = read_history(results, table["y"])
+    if "x_rate" in table:
+        # A prescribed motion at a constant rate from t = 0: the abscissa is rate x time, known
+        # without reading anything the solver computed.
+        x = float(table["x_rate"]) * ty
+        window = table.get("window")
+        keep = np.ones(ty.shape, dtype=bool) if window is None else (ty >= window[0]) & (ty <= window[1])
+        if not keep.any():
+            raise ExtractError(f"history '{table['y']}' has no samples in the window {window}")
+        return Series(x[keep], y[keep], f"{table['x_rate']:g} t", table["y"])
+    tx, x = read_history(results, table["x"])
+    x = x * float(table.get("x_scale", 1.0))
     if tx.shape != ty.shape or np.any(tx != ty):
         # Histories of different subjects may be sampled at different times (block positions at
         # the end of a step, joint measures at its start): put y on x's sample times, and keep
@@ -220,13 +245,13 @@ class Kind:
 
 
 KINDS = {
-    "final": Kind(final, ("history",), (), False),
-    "max": Kind(maximum, ("history",), ("window",), False),
-    "min": Kind(minimum, ("history",), ("window",), False),
-    "mean": Kind(mean, ("history",), ("window",), False),
-    "value_at": Kind(value_at, ("history", "t"), (), False),
-    "history": Kind(history, ("history",), ("window",), True),
-    "curve": Kind(curve, ("x", "y"), ("window",), True),
+    "final": Kind(final, ("history",), ("scale",), False),
+    "max": Kind(maximum, ("history",), ("window", "scale"), False),
+    "min": Kind(minimum, ("history",), ("window", "scale"), False),
+    "mean": Kind(mean, ("history",), ("window", "scale"), False),
+    "value_at": Kind(value_at, ("history", "t"), ("scale",), False),
+    "history": Kind(history, ("history",), ("window", "scale"), True),
+    "curve": Kind(curve, ("y",), ("x", "window", "x_scale", "x_rate"), True),
     "fit_t2": Kind(fit_t2, ("history",), ("window", "t0"), False),
     "slope": Kind(slope, ("history",), ("window",), False),
     "period": Kind(period, ("history",), ("window", "level"), False),

@@ -135,11 +135,22 @@ def _values(columns, of, quantity, theta):
     return {"ux": ux, "uy": uy, "ur": ux * c + uy * s, "ut": -ux * s + uy * c}[quantity]
 
 
+def _finite(values, of, quantity):
+    """values, or an ExtractError when one is not finite: a field that went NaN in some zone must
+    not pass on the others (nor count as "not zero" in an extent)."""
+    from vdec_verify.extract import ExtractError
+    bad = np.flatnonzero(~np.isfinite(values))
+    if bad.size:
+        raise ExtractError(f"{of}.{quantity} has {bad.size} non-finite values in the selection "
+                           f"(the first at selected sample {int(bad[0])})")
+    return values
+
+
 def field(results, table):
     from vdec_verify.extract import Series
     of, quantity = table["of"], table["quantity"]
     columns, mask, x, y, r, theta = _selected(results, table)
-    values = _values(columns, of, quantity, theta)[mask]
+    values = _finite(_values(columns, of, quantity, theta)[mask], of, quantity)
     polar = quantity in POLAR or "r" in table or "angle" in table
     abscissa = table.get("abscissa", "r" if polar else "x")
     coordinate = {"x": x, "y": y, "r": r, "theta": theta}[abscissa][mask]
@@ -152,7 +163,7 @@ def field(results, table):
 def field_mean(results, table):
     of, quantity = table["of"], table["quantity"]
     columns, mask, _, _, _, theta = _selected(results, table)
-    values = _values(columns, of, quantity, theta)[mask]
+    values = _finite(_values(columns, of, quantity, theta)[mask], of, quantity)
     if of == "zones":
         area = np.asarray(columns["area"], dtype=float)[mask]
         return float(np.sum(area * values) / np.sum(area))
@@ -162,7 +173,7 @@ def field_mean(results, table):
 def field_peak(results, table):
     of, quantity = table["of"], table["quantity"]
     columns, mask, _, _, _, theta = _selected(results, table)
-    values = _values(columns, of, quantity, theta)[mask]
+    values = _finite(_values(columns, of, quantity, theta)[mask], of, quantity)
     return float(values[np.argmax(np.abs(values))])
 
 
@@ -171,6 +182,7 @@ def field_extent(results, table):
     of, quantity = table["of"], table["quantity"]
     columns, mask, _, _, r, theta = _selected(results, table)
     values = _values(columns, of, quantity, theta)
+    _finite(values[mask], of, quantity)
     where = mask & (values != 0.0)
     if not where.any():
         raise ExtractError(f"no {of} in the selection has a nonzero {quantity}")

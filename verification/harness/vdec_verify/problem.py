@@ -10,14 +10,26 @@ Keys of problem.toml:
     level = "base"                "base" (run in the test suite) or "full" (only in the full suite); default base
     overrides = ["solver.frac=0.2"]    extra `vdec run --set` values for every run of the problem
     expect_exit = 0               the exit code of the plain run (and default for variants); default 0
+    expect_stop = "ratio"         how the plain run (and by default every run that exits 0) ends: its
+                                  results.json run.stop_reason, "ratio", "cycles" or "time"; required when
+                                  some run exits 0. A run expected to exit nonzero must stop on "error".
     timeout_seconds = 600         limit for each run of the problem; default 600
 
     [[variant]]                   optional further runs of the same scene (e.g. time-step sweeps)
     name = "frac-0.5"             required; letters, digits, ".", "_", "-"; the run goes in runs/<ID>/<name>/
     overrides = ["solver.frac=0.5"]    added after the problem's overrides
     expect_exit = 0               default: the problem's expect_exit
-    expect_message = "..."        optional, with a nonzero expect_exit: text the run's stderr must hold,
-                                  so that a stop counts only when it is for the expected reason
+    expect_message = "..."        required with a nonzero expect_exit (and only then): text the run's stderr
+                                  must hold, so that a stop counts only when it is for the expected reason
+    expect_stop = "time"          default: the problem's expect_stop (with expect_exit 0)
+
+    [[mutation]]                  at least one: a wrong model the checks must reject (run by the full suite)
+    name = "ks-half"              required, like a variant name; its runs go in mutations/<ID>/<name>/
+    overrides = ["joint_material[0].ks=5e9"]   required, non-empty: added after every run's own overrides
+    why = "..."                   required: what the change breaks, and which check should see it
+    runs = ["plain", "frac-0.5"]  optional: the runs (by variant or level name, "plain" for the plain run)
+                                  made again with the change; default every run of the problem. Only the
+                                  checks reading these runs are judged.
 
     [[check]]                     at least one
     quantity = "..."              required, human-readable
@@ -25,9 +37,13 @@ Keys of problem.toml:
     reference = { function = "module.function", params = { ... }, component = N }
              or { constant = VALUE }   required; function is looked up in the `analytic` package
     norm = "scalar"               required: scalar | upper_bound | equal (scalar extracts), L2 | Linf (series)
-    rtol = 1e-3                   at least one of rtol, atol (>= 0); not used by norm "equal"
+    rtol = 1e-3                   at least one of rtol, atol (>= 0), not both zero for norms scalar, L2 and
+                                  Linf; not used by norm "equal"; both may be zero for upper_bound (the
+                                  reference is then the bound itself)
     atol = 0.0
     justification = "..."         required, non-empty: why the tolerance is fair
+    tolerance_basis = "derived"   required: "derived" (from an error estimate, stated in the justification)
+                                  or "measured" (set from observed errors, with a margin)
     variant = "frac-0.5"          optional: the variant whose run the check reads; default the plain run
     refinement = true             optional, default false: the studied check of the [refinement] study
 
@@ -70,7 +86,7 @@ import inspect
 import math
 import re
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from vdec_verify.extract import KINDS
@@ -84,12 +100,22 @@ DEFAULT_TIMEOUT_SECONDS = 600.0
 # Files the runner writes in a run folder; a variant's folder sits beside them.
 RUN_FILES = ("results.json", "command.txt", "stdout.txt", "stderr.txt")
 
-PROBLEM_KEYS = ("id", "title", "requirements", "scene", "level", "overrides", "expect_exit", "timeout_seconds",
-                "variant", "refinement", "check")
+PROBLEM_KEYS = ("id", "title", "requirements", "scene", "level", "overrides", "expect_exit", "expect_stop",
+                "timeout_seconds", "variant", "refinement", "check", "mutation")
 # Tables planned for later work: named here so that using one says so rather than "unknown key".
 PLANNED_KEYS = {}
-VARIANT_KEYS = ("name", "overrides", "expect_exit", "expect_message")
-CHECK_KEYS = ("quantity", "extract", "reference", "norm", "rtol", "atol", "justification", "variant", "refinement")
+VARIANT_KEYS = ("name", "overrides", "expect_exit", "expect_message", "expect_stop")
+CHECK_KEYS = ("quantity", "extract", "reference", "norm", "rtol", "atol", "justification", "tolerance_basis",
+              "variant", "refinement")
+MUTATION_KEYS = ("name", "overrides", "why", "runs")
+# run.stop_reason of results.json: the stop criterion met, or "error" for a run that ended on an error.
+STOP_REASONS = ("ratio", "cycles", "time")
+ERROR_STOP = "error"
+TOLERANCE_BASES = ("derived", "measured")
+# Norms whose pass rule needs a positive tolerance: with rtol = atol = 0 they would demand bit-for-bit
+# equality, which is what norm "equal" says openly.
+TOLERANCE_NORMS = ("scalar", "L2", "Linf")
+PLAIN_RUN_LABEL = "plain"
 REFINEMENT_KEYS = ("expected_order", "order_tolerance", "justification", "asymptotic_levels", "level")
 LEVEL_KEYS = ("name", "h", "overrides", "level")
 # Norms whose error is >= 0 and shrinks with the zone size: the ones an order can be fitted to.
@@ -108,6 +134,7 @@ class Run:
     overrides: tuple
     expect_exit: int
     expect_message: str = ""
+    expect_stop: str = ""     # run.stop_reason expected; "error" for a nonzero expect_exit
 
     @property
     def label(self):
@@ -134,6 +161,16 @@ class Check:
     justification: str
     variant: str         # "" for the plain run
     refinement: bool = False   # the studied check of the problem's [refinement] study
+    tolerance_basis: str = "derived"   # "derived" or "measured"
+
+
+@dataclass(frozen=True)
+class Mutation:
+    """A [[mutation]]: overrides that make the model wrong, which the problem's checks must reject."""
+    name: str
+    overrides: tuple
+    why: str
+    runs: tuple          # names of the runs made again ("" the plain run); () every run
 
 
 @dataclass(frozen=True)
@@ -170,6 +207,7 @@ class Problem:
     checks: list
     timeout_seconds: float
     refinement: Refinement = None
+    mutations: tuple = ()
 
     @property
     def folder(self):
@@ -186,6 +224,12 @@ class Problem:
             return list(self.runs)
         skipped = {lv.name for lv in self.refinement.levels if lv not in self.refinement.levels_at(suite_level)}
         return [run for run in self.runs if run.name not in skipped]
+
+    def mutated_runs(self, mutation, suite_level):
+        """The runs of a mutation: those it names (all of the suite's when it names none), each
+        with the mutation's overrides added last."""
+        chosen = [run for run in self.runs_at(suite_level) if not mutation.runs or run.name in mutation.runs]
+        return [replace(run, overrides=run.overrides + mutation.overrides) for run in chosen]
 
 
 def find_reference_function(name):
@@ -267,6 +311,14 @@ def _extract_table(errors, table, where):
     for key in ("history",) + (("x", "y") if kind_name == "curve" else ()):
         if key in table and not _is_text(table[key]):
             errors.add(f"{where}.{key}", "must name a history")
+    if kind_name == "curve" and ("x" in table) == ("x_rate" in table):
+        errors.add(f"{where}.x", "a curve needs exactly one abscissa: x (a history) or x_rate (a prescribed rate "
+                                 "times the time)")
+    if kind_name == "curve" and "x_rate" in table and "x_scale" in table:
+        errors.add(f"{where}.x_scale", "applies to the history x, not to x_rate")
+    for key in ("scale", "x_scale", "x_rate"):
+        if key in table and not (_is_number(table[key]) and math.isfinite(table[key]) and table[key] != 0):
+            errors.add(f"{where}.{key}", f"{table[key]!r} is not a finite nonzero number")
     for key in ("t", "t0", "level"):
         if key in table and not _is_number(table[key]):
             errors.add(f"{where}.{key}", f"{table[key]!r} is not a number")
@@ -374,6 +426,9 @@ def _tolerance(errors, check, where, norm):
             errors.add(f"{where}.rtol", "norm 'equal' means exact equality; use norm 'scalar' for a tolerance")
     elif "rtol" not in check and "atol" not in check:
         errors.add(f"{where}.rtol", "the check has no tolerance: give rtol and/or atol")
+    elif norm in TOLERANCE_NORMS and not any(values.values()) and len(values) == sum(k in check for k in ("rtol", "atol")):
+        errors.add(f"{where}.rtol", f"rtol and atol are both zero: norm '{norm}' would then ask for bit-for-bit "
+                                    "equality; give the tolerance the justification derives, or use norm 'equal'")
     return values.get("rtol", 0.0), values.get("atol", 0.0)
 
 
@@ -387,6 +442,14 @@ def _positive(errors, table, key, where):
         errors.add(f"{where}{key}", f"{value!r} is not a finite number > 0")
         return None
     return float(value)
+
+
+def _folder_name(errors, value, where):
+    """A run's name (it names a folder), or None with the error recorded."""
+    if not isinstance(value, str) or not VARIANT_NAME.match(value):
+        errors.add(where, f"{value!r} is required: letters, digits, '.', '_' or '-' (it names a folder)")
+        return None
+    return value
 
 
 def _refinement(errors, table, overrides, variant_names, problem_level):
@@ -418,10 +481,9 @@ def _refinement(errors, table, overrides, variant_names, problem_level):
     for i, lv in enumerate(raw):
         where = f"refinement.level[{i}]"
         _check_unknown(errors, lv, LEVEL_KEYS, f"{where}.")
-        name = lv.get("name")
-        if not isinstance(name, str) or not VARIANT_NAME.match(name):
-            errors.add(f"{where}.name", f"{name!r} is required: letters, digits, '.', '_' or '-' (it names a folder)")
-            name = None
+        name = _folder_name(errors, lv.get("name"), f"{where}.name")
+        if name is None:
+            pass
         elif name in RUN_FILES:
             errors.add(f"{where}.name", f"'{name}' is the name of a file in the plain run's folder")
         elif name in variant_names:
@@ -494,6 +556,10 @@ def load_problem(path):
         errors.add("level", f"{level!r} must be 'base' or 'full'")
     overrides = _overrides(errors, data.get("overrides", []), "overrides")
     expect_exit = _exit_code(errors, data.get("expect_exit", 0), "expect_exit")
+    expect_stop = data.get("expect_stop", "")
+    if "expect_stop" in data and expect_stop not in STOP_REASONS:
+        errors.add("expect_stop", f"{expect_stop!r} is not a stop reason ({', '.join(STOP_REASONS)})")
+        expect_stop = ""
     timeout = data.get("timeout_seconds", DEFAULT_TIMEOUT_SECONDS)
     if not _is_number(timeout) or not timeout > 0:
         errors.add("timeout_seconds", f"{timeout!r} is not a positive number of seconds")
@@ -510,9 +576,8 @@ def load_problem(path):
             errors.add(where, "must be a table")
             continue
         _check_unknown(errors, v, VARIANT_KEYS, f"{where}.")
-        name = v.get("name")
-        if not isinstance(name, str) or not VARIANT_NAME.match(name):
-            errors.add(f"{where}.name", f"{name!r} is required: letters, digits, '.', '_' or '-' (it names a folder)")
+        name = _folder_name(errors, v.get("name"), f"{where}.name")
+        if name is None:
             continue
         if name in RUN_FILES:
             errors.add(f"{where}.name", f"'{name}' is the name of a file in the plain run's folder")
@@ -526,7 +591,13 @@ def load_problem(path):
         if not isinstance(message, str) or ("expect_message" in v and (not message or code == 0)):
             errors.add(f"{where}.expect_message", "must be non-empty text, and goes with a nonzero expect_exit")
             message = ""
-        variants.append(Run(name, overrides + extra, code, message))
+        elif code != 0 and "expect_message" not in v:
+            errors.add(f"{where}.expect_message", f"is required with expect_exit = {code}: text of the message the "
+                                                  "stop must print (naming the setting to change, e.g. "
+                                                  "\"lower solver.frac\"), so that a stop for another reason fails")
+        stop = _expected_stop(errors, v.get("expect_stop", expect_stop), code, f"{where}.expect_stop",
+                              "expect_stop" in v)
+        variants.append(Run(name, overrides + extra, code, message, stop))
 
     refinement = None
     if "refinement" in data:
@@ -584,17 +655,118 @@ def load_problem(path):
             if earlier is not None:
                 errors.add(f"{where}.refinement", f"only one check can be studied over the refinement levels "
                                                   f"(check[{earlier.index}] already is)")
+        basis = c.get("tolerance_basis")
+        if basis not in TOLERANCE_BASES:
+            errors.add(f"{where}.tolerance_basis",
+                       ("is required" if "tolerance_basis" not in c else f"{basis!r} is not allowed") +
+                       ": \"derived\" (the justification derives the tolerance from an error estimate) or "
+                       "\"measured\" (set from the errors observed, with a margin)")
         checks.append(Check(i, c.get("quantity", ""), c.get("extract"), reference, norm, rtol, atol,
-                            c.get("justification", ""), variant, studied))
+                            c.get("justification", ""), variant, studied, basis))
     if "refinement" in data and raw_checks and not any(c.refinement for c in checks):
         errors.add("refinement", "no [[check]] has refinement = true: the study has nothing to study")
-    errors.raise_any()
-
     runs = list(variants)
     if any(c.variant == "" and not c.refinement for c in checks):
-        runs.insert(0, Run("", overrides, expect_exit))
+        plain_stop = _expected_stop(errors, expect_stop, expect_exit, "expect_stop", "expect_stop" in data)
+        runs.insert(0, Run("", overrides, expect_exit, "", plain_stop))
     if refinement is not None:
+        stop = _expected_stop(errors, expect_stop, 0, "expect_stop", "expect_stop" in data)
+        refinement = replace(refinement, levels=tuple(replace(lv, run=replace(lv.run, expect_stop=stop))
+                                                      for lv in refinement.levels))
         runs += [lv.run for lv in refinement.levels]
+    mutations = _mutations(errors, data, [run.name for run in runs])
+    if scene is not None:
+        _check_cycle_bounds(errors, scene, runs, checks)
+    errors.raise_any()
     return Problem(problem_id, title, list(requirements), path, scene, level, runs, checks, float(timeout),
-                   refinement)
+                   refinement, mutations)
+
+
+def _cycle_limit(scene, overrides):
+    """stop.cycles of the scene after the overrides, or None when it has none (or is unreadable)."""
+    try:
+        limit = tomllib.loads(scene.read_text(encoding="utf-8")).get("stop", {}).get("cycles")
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError, AttributeError):
+        return None
+    for override in overrides:
+        key, _, value = override.partition("=")
+        if key.strip() == "stop.cycles":
+            try:
+                limit = tomllib.loads(f"v = {value}")["v"]
+            except tomllib.TOMLDecodeError:
+                return None
+    return limit if _is_number(limit) else None
+
+
+def _check_cycle_bounds(errors, scene, runs, checks):
+    """A bound on run.cycles must lie strictly below the run's cycle limit: a run stopped by the
+    limit has not converged, and a bound at the limit would pass it."""
+    overrides = {run.name: run.overrides for run in runs}
+    for check in checks:
+        if (check.extract or {}).get("kind") != "run_meta" or check.extract.get("path") != "run.cycles":
+            continue
+        if check.norm != "upper_bound" or check.reference is None or check.reference.constant is None:
+            continue
+        limit = _cycle_limit(scene, overrides.get(check.variant, ()))
+        allowed = check.reference.constant * (1.0 + check.rtol) + check.atol
+        if limit is not None and not allowed < limit:
+            errors.add(f"check[{check.index}].reference", f"the bound on run.cycles ({allowed:g}) is not below the "
+                                                          f"run's cycle limit stop.cycles = {limit:g}: a run that "
+                                                          "stops on the limit, unconverged, would pass")
+
+
+def _expected_stop(errors, stop, exit_code, key, given):
+    """The stop reason a run must end with: "error" for a nonzero exit, else the one stated."""
+    if exit_code != 0:
+        if given and stop not in ("", ERROR_STOP) and key != "expect_stop":
+            errors.add(key, f"a run expected to exit {exit_code} stops on \"{ERROR_STOP}\", not {stop!r}")
+        return ERROR_STOP
+    if stop not in STOP_REASONS:
+        errors.add(key, f"is required for a run that exits 0: the run.stop_reason it must end with "
+                        f"({', '.join(STOP_REASONS)}), so that a run cut short by its limits is not taken "
+                        "for one that reached its stop criterion")
+        return ""
+    return stop
+
+
+def _mutations(errors, data, run_names):
+    """The [[mutation]] tables (at least one) as Mutation records."""
+    raw = data.get("mutation", [])
+    if not isinstance(raw, list) or not raw or not all(isinstance(m, dict) for m in raw):
+        errors.add("mutation", "at least one [[mutation]] table is required: an override that makes the model "
+                               "wrong (e.g. a stiffness x 0.5, a friction angle + 3 degrees), which the checks "
+                               "must reject")
+        return ()
+    mutations = []
+    for i, m in enumerate(raw):
+        where = f"mutation[{i}]"
+        _check_unknown(errors, m, MUTATION_KEYS, f"{where}.")
+        name = _folder_name(errors, m.get("name"), f"{where}.name")
+        if name is None:
+            continue
+        if any(other.name == name for other in mutations):
+            errors.add(f"{where}.name", f"'{name}' is used by an earlier mutation")
+        if "overrides" not in m:
+            errors.add(f"{where}.overrides", "is required: at least one override, the change that makes the model wrong")
+        changes = _overrides(errors, m.get("overrides", []), f"{where}.overrides")
+        if "overrides" in m and not changes:
+            errors.add(f"{where}.overrides", "must hold at least one override: the change that makes the model wrong")
+        why = m.get("why")
+        if not _is_text(why):
+            errors.add(f"{where}.why", "is required: what the change breaks and which check must see it")
+        names = m.get("runs", [])
+        if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
+            errors.add(f"{where}.runs", "must be a list of run names")
+            names = []
+        chosen = []
+        for label in names:
+            run_name = "" if label == PLAIN_RUN_LABEL else label
+            if run_name not in run_names:
+                known = ", ".join(n or PLAIN_RUN_LABEL for n in run_names)
+                errors.add(f"{where}.runs", f"no run named {label!r} (the problem's runs: {known})")
+            chosen.append(run_name)
+        if "runs" in m and not chosen:
+            errors.add(f"{where}.runs", "names no run; leave it out to make every run again")
+        mutations.append(Mutation(name, changes, why if isinstance(why, str) else "", tuple(chosen)))
+    return tuple(mutations)
 

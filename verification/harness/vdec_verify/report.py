@@ -49,6 +49,8 @@ def public_record(record):
     kept["metrics"] = [{k: v for k, v in m.items() if k != "plot"} for m in record["metrics"]]
     if record.get("convergence") is not None:   # optional: only problems with a [refinement] study
         kept["convergence"] = record["convergence"]
+    if record.get("mutations") is not None:     # only when the suite ran the mutations (level full)
+        kept["mutations"] = record["mutations"]
     return _finite_or_none(kept)
 
 
@@ -140,6 +142,25 @@ def _ratio(value):
     return "" if value is None else f"{value:.3e}"
 
 
+def _review_note(metric):
+    """The tolerance's basis and, for review, its ratio to the error met (LOOSE above 20)."""
+    basis = metric.get("tolerance_basis")
+    if not basis:
+        return ""
+    ratio = metric.get("tolerance_over_error")
+    ratio_text = "" if ratio is None else f", tolerance/error {ratio:.3g}"
+    return f"tolerance {basis}{ratio_text}" + (" LOOSE (for review)" if metric.get("loose") else "")
+
+
+def _mutation_lines(record):
+    """One line per mutation of a full suite: its overrides and whether the checks caught it."""
+    lines = []
+    for m in record.get("mutations") or ():
+        verdict = "caught by " + m["rejected_by"][0] if m["caught"] else "NOT CAUGHT: " + m["message"]
+        lines.append(f"mutation {m['name']} ({', '.join(m['overrides'])}): {verdict}")
+    return lines
+
+
 def _provenance_lines(software, harness, disagreements):
     dirty = {True: " (uncommitted changes)", False: "", None: ""}[harness["git_dirty"]]
     lines = [f"vdec {software['version']}, commit {software['git_commit']}, build {software['build_type']}, "
@@ -198,7 +219,8 @@ def write_html(records, out, harness, software, disagreements, images):
                 cells += f'<td colspan="7">{e(r["message"])}</td>'
             else:
                 variant = f'<i>[{e(m["variant"])}]</i> ' if m["variant"] else ""
-                note = f'<br><small class="note">{e(m["message"])}</small>' if m["message"] else ""
+                note = "".join(f'<br><small class="note">{e(text)}</small>' for text in (m["message"], _review_note(m))
+                               if text)
                 result = _result_label(m)
                 cells += (f'<td>{variant}{e(m["quantity"])}{note}<details><summary>justification</summary>'
                           f'{e(m["justification"])}</details></td><td>{e(str(m["norm"]))}</td>'
@@ -208,6 +230,8 @@ def write_html(records, out, harness, software, disagreements, images):
             rows.append(f"<tr>{cells}</tr>")
         if r["status"] != "pass" and r["message"] and r["metrics"]:
             rows.append(f'<tr><td colspan="9" class="note">{e(r["message"])}</td></tr>')
+        for line in _mutation_lines(r):
+            rows.append(f'<tr><td colspan="9" class="note">{e(line)}</td></tr>')
         if images.get(r["id"]):
             shown = "".join(f'<figure><img src="{e(f["name"])}" alt="{e(f["caption"])}"><figcaption>'
                             f'{e(f["caption"])}</figcaption></figure>' for f in images[r["id"]])

@@ -31,6 +31,8 @@ RESULTS_SCHEMA = "vdec.results/1"
 # caller says otherwise): threads of two runs contending for two cores would only slow both, and
 # one thread per run keeps the wall times of a study comparable.
 RUN_ENVIRONMENT = {**os.environ, "OMP_NUM_THREADS": os.environ.get("OMP_NUM_THREADS", "1")}
+# A check whose tolerance is more than this many times the error it meets is flagged for review.
+LOOSE_TOLERANCE_RATIO = 20.0
 EXIT_MEANINGS = {0: "ok", 1: "internal error", 2: "command line error", 3: "scene input error", 4: "geometry error",
                  5: "numerical instability", 6: "contact overlap beyond half the rounding length",
                  7: "output error"}
@@ -120,8 +122,9 @@ class RunOutcome:
                 "message": self.failure}
 
 
-def run_folder(out, problem_id, run):
-    folder = Path(out) / "runs" / problem_id
+def run_folder(out, problem_id, run, mutation=None):
+    """OUT/runs/<ID>[/<run>], or OUT/mutations/<ID>/<mutation>[/<run>] for a run of a mutation."""
+    folder = Path(out) / "runs" / problem_id if mutation is None else Path(out) / "mutations" / problem_id / mutation.name
     return folder / run.name if run.name else folder
 
 
@@ -140,9 +143,10 @@ def _text(stream):
     return stream.decode(errors="replace") if isinstance(stream, bytes) else (stream or "")
 
 
-def execute(problem, run, vdec, out):
-    """One run of vdec; never raises: anything that goes wrong is in the outcome's failure."""
-    folder = run_folder(out, problem.id, run)
+def execute(problem, run, vdec, out, mutation=None):
+    """One run of vdec; never raises: anything that goes wrong is in the outcome's failure.
+    A run of a mutation goes in mutations/<ID>/<name>/[<run>]."""
+    folder = run_folder(out, problem.id, run, mutation)
     command = [str(vdec), "run", str(problem.scene), "--out", str(folder)]
     for override in run.overrides:
         command += ["--set", override]
@@ -190,6 +194,11 @@ def execute(problem, run, vdec, out):
                                f"{run.expect_message!r}: {_last_line(stderr) or 'no message'}")
         if not outcome.failure and run.expect_exit == 0 and outcome.results is None:
             outcome.failure = "exited 0 but wrote no results.json"
+        if not outcome.failure and run.expect_stop and outcome.results is not None:
+            stop = (outcome.results.get("run") or {}).get("stop_reason")
+            if stop != run.expect_stop:
+                outcome.failure = (f"stopped on {stop!r} (run.stop_reason), expected {run.expect_stop!r} "
+                                   "(expect_stop)")
     except Exception as e:  # e.g. the output folder cannot be written: report it, keep the suite going
         outcome.failure = outcome.failure or f"harness error running {problem.id}: {type(e).__name__}: {e}"
         outcome.wall_seconds = time.monotonic() - start
@@ -209,7 +218,7 @@ def unevaluated_metric(check, message=""):
     return {"quantity": check.quantity, "variant": check.variant or None, "extract": check.extract["kind"],
             "norm": check.norm, "rtol": check.rtol, "atol": check.atol, "error": None, "tolerance": None,
             "pass": False, "numerical": None, "reference": None, "justification": check.justification,
-            "message": message}
+            "tolerance_basis": check.tolerance_basis, "message": message}
 
 
 def judge_check(check, outcome, outcomes=None):
@@ -243,7 +252,17 @@ def order_metric(check, refinement, study):
             "norm": "order", "rtol": 0.0, "atol": refinement.order_tolerance, "error": error,
             "tolerance": refinement.order_tolerance, "pass": study["pass"], "numerical": observed,
             "reference": refinement.expected_order, "justification": refinement.justification,
-            "message": study["message"]}
+            "tolerance_basis": check.tolerance_basis, "message": study["message"]}
+
+
+def evaluate_check(check, outcome, outcomes, where=""):
+    """(metric, invalid-reference message or None) of one check; never raises."""
+    try:
+        return judge_check(check, outcome, outcomes), None
+    except (ReferenceProblem, LookupError) as e:
+        return unevaluated_metric(check, f"invalid reference: {e}"), f"check {check.index + 1}{where}: {e}"
+    except Exception as e:  # a harness fault on odd data: report it against this check, not the suite
+        return unevaluated_metric(check, f"harness error: {type(e).__name__}: {e}"), None
 
 
 def judge_study(problem, check, outcomes, level):
@@ -254,14 +273,9 @@ def judge_study(problem, check, outcomes, level):
     levels = problem.refinement.levels_at(level)
     per_level, invalid = [], []
     for lv in levels:
-        try:
-            metric = judge_check(check, outcomes[lv.name])
-        except (ReferenceProblem, LookupError) as e:
-            metric = unevaluated_metric(check, f"invalid reference: {e}")
-            invalid.append(f"check {check.index + 1} (level {lv.name}): {e}")
-        except Exception as e:  # a harness fault on odd data: report it against this check, not the suite
-            metric = unevaluated_metric(check, f"harness error: {type(e).__name__}: {e}")
+        metric, unusable = evaluate_check(check, outcomes[lv.name], None, f" (level {lv.name})")
         per_level.append(metric)
+        invalid += [unusable] if unusable else []
     runs = [outcomes[lv.name] for lv in levels]
     study = convergence_study(
         names=[lv.name for lv in levels], h=[lv.h for lv in levels], error=[m["error"] for m in per_level],
@@ -280,9 +294,78 @@ def judge_study(problem, check, outcomes, level):
     return [finest, study_metric], study, invalid
 
 
-def judge(entry, outcomes, level="full"):
+def judge_checks(problem, checks, outcomes, level):
+    """(metrics, convergence record or None, invalid-reference messages) of the given checks of
+    problem against the outcomes (run name -> RunOutcome)."""
+    metrics, convergence, problems = [], None, []
+    for check in checks:
+        if check.refinement:
+            study_metrics, convergence, invalid = judge_study(problem, check, outcomes, level)
+            metrics += study_metrics
+            problems += invalid
+            continue
+        metric, unusable = evaluate_check(check, outcomes[check.variant], outcomes)
+        metrics.append(metric)
+        problems += [unusable] if unusable else []
+    for metric in metrics:
+        ratio = tolerance_over_error(metric)
+        metric["tolerance_over_error"] = ratio
+        metric["loose"] = ratio is not None and ratio > LOOSE_TOLERANCE_RATIO
+    return metrics, convergence, problems
+
+
+def tolerance_over_error(metric):
+    """How many times the error the tolerance allows (None when it cannot be said): a check whose
+    tolerance is far above the error it meets would pass much worse answers, and is flagged for
+    review when this exceeds LOOSE_TOLERANCE_RATIO. For an upper bound it is the room under the
+    bound over the room the value used, measured from zero: (reference + allowance) / numerical."""
+    error, tolerance = metric.get("error"), metric.get("tolerance")
+    if error is None or tolerance is None or not metric.get("pass") or metric["norm"] in ("equal", "order"):
+        return None
+    if metric["norm"] == "upper_bound":
+        bound = metric["reference"] * (1.0 + tolerance) if metric["reference"] else tolerance
+        numerical = metric["numerical"]
+        if numerical is None or bound <= 0.0:
+            return None
+        return math.inf if numerical <= 0.0 else bound / numerical
+    return math.inf if error == 0.0 else tolerance / error
+
+
+def judge_mutation(problem, mutation, outcomes, mutated, level):
+    """Whether the checks reject a mutation: some run of it ends other than expected, or some check
+    reading its runs fails. A check that cannot be evaluated because its reference is unusable
+    does not count as a rejection."""
+    runs = problem.mutated_runs(mutation, level)
+    names = {run.name for run in runs}
+    record = {"name": mutation.name, "overrides": list(mutation.overrides), "why": mutation.why,
+              "runs": [run.label for run in runs], "caught": False, "rejected_by": [], "message": ""}
+    missing = [run.label for run in runs if run.name not in mutated]
+    if missing:
+        record["message"] = f"the runs {', '.join(missing)} were not made"
+        return record
+    for run in runs:
+        if mutated[run.name].failure:
+            record["rejected_by"].append(f"run {run.label}: {mutated[run.name].failure}")
+    levels = {lv.name for lv in problem.refinement.levels_at(level)} if problem.refinement else set()
+    checks = [c for c in problem.checks if (levels <= names if c.refinement else c.variant in names)]
+    metrics, _, problems = judge_checks(problem, checks, {**outcomes, **mutated}, level)
+    for m in metrics:
+        if not m["pass"] and not m["message"].startswith(("invalid reference", "harness error")):
+            why = m["message"] if m["error"] is None or m["norm"] == "order" else \
+                f"error {m['error']:.3g} > tolerance {m['tolerance']:.3g}"
+            record["rejected_by"].append(f"check: {m['quantity']} ({why})")
+    record["caught"] = bool(record["rejected_by"])
+    if not record["caught"]:
+        record["message"] = (f"all {len(metrics)} checks on its runs passed and every run ended as expected"
+                             + (f"; invalid: {problems[0]}" if problems else ""))
+    return record
+
+
+def judge(entry, outcomes, level="full", mutation_outcomes=None):
     """The record of one problem (see report.write_summary for the fields kept); level is the
-    suite's level ("base" or "full"), which decides the refinement levels that ran."""
+    suite's level ("base" or "full"), which decides the refinement levels that ran.
+    mutation_outcomes (mutation name -> run name -> RunOutcome), given when the suite ran the
+    problem's mutations, adds the record's "mutations": a mutation not caught fails the problem."""
     record = {"id": entry.id, "title": entry.title, "requirements": list(entry.requirements), "level": None,
               "status": "invalid", "metrics": [], "runs": [], "wall_seconds": 0.0, "cycles": 0, "scene_sha256": "",
               "exit_code": None, "message": entry.error, "messages": entry.error.splitlines(),
@@ -301,27 +384,22 @@ def judge(entry, outcomes, level="full"):
     record["scene_sha256"] = next((s for s in shas if s), None) or hashlib.sha256(problem.scene.read_bytes()).hexdigest()
 
     messages = [f"run {o.variant}: {o.failure}" if o.variant else o.failure for o in ordered if o.failure]
-    invalid = False
-    for check in problem.checks:
-        if check.refinement:
-            metrics, record["convergence"], problems = judge_study(problem, check, outcomes, level)
-            record["metrics"] += metrics
-            invalid |= bool(problems)
-            messages += problems
-            continue
-        try:
-            metric = judge_check(check, outcomes[check.variant], outcomes)
-        except (ReferenceProblem, LookupError) as e:
-            invalid = True
-            metric = unevaluated_metric(check, f"invalid reference: {e}")
-            messages.append(f"check {check.index + 1}: {e}")
-        except Exception as e:  # a harness fault on odd data: report it against this check, not the suite
-            metric = unevaluated_metric(check, f"harness error: {type(e).__name__}: {e}")
-        record["metrics"].append(metric)
+    record["metrics"], convergence, problems = judge_checks(problem, problem.checks, outcomes, level)
+    if convergence is not None:
+        record["convergence"] = convergence
+    messages += problems
+    invalid = bool(problems)
     failing = [m for m in record["metrics"] if not m["pass"]]
+    if mutation_outcomes is not None:
+        record["mutations"] = [judge_mutation(problem, m, outcomes, mutation_outcomes.get(m.name, {}), level)
+                               for m in problem.mutations]
+        for m in record["mutations"]:
+            if not m["caught"]:
+                messages.append(f"mutation {m['name']} not caught: {m['message']}")
+    missed = any(not m["caught"] for m in record.get("mutations", ()))
     if invalid:
         record["status"] = "invalid"
-    elif failing or any(o.failure for o in ordered):
+    elif failing or missed or any(o.failure for o in ordered):
         record["status"] = "fail"
     else:
         record["status"] = "pass"
@@ -347,21 +425,38 @@ def run_suite(entries, vdec, out, jobs=2, progress=_progress, level="full"):
     level: the suite's level; a base suite runs only the base refinement levels."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    work = [(entry, run) for entry in entries if entry.problem is not None for run in entry.problem.runs_at(level)]
+    work = [(entry, run, None) for entry in entries if entry.problem is not None
+            for run in entry.problem.runs_at(level)]
+    if run_mutations(level):
+        work += [(entry, run, mutation) for entry in entries if entry.problem is not None
+                 for mutation in entry.problem.mutations for run in entry.problem.mutated_runs(mutation, level)]
     outcomes = {}
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        futures = {pool.submit(execute, entry.problem, run, vdec, out): (entry.id, run.name) for entry, run in work}
+        futures = {pool.submit(execute, entry.problem, run, vdec, out, mutation):
+                   (entry.id, mutation.name if mutation else None, run.name) for entry, run, mutation in work}
         for done, future in enumerate(as_completed(futures), start=1):
             key = futures[future]
             outcome = future.result()
             outcomes[key] = outcome
             if progress:
+                where = key[0] + (f" mutation {key[1]}" if key[1] else "") + (f"/{key[2]}" if key[2] else "")
                 ended = "did not finish" if outcome.exit_code is None else f"exit {outcome.exit_code}"
-                progress(f"[{done}/{len(work)}] {key[0]}{'/' + key[1] if key[1] else ''}: {ended} in "
+                progress(f"[{done}/{len(work)}] {where}: {ended} in "
                          f"{outcome.wall_seconds:.2f} s, {outcome.failure or 'as expected'}")
     records = []
     for entry in sorted(entries, key=lambda e: e.id):
-        mine = {name: outcome for (problem_id, name), outcome in outcomes.items() if problem_id == entry.id}
-        records.append(judge(entry, mine, level))
+        mine = {name: o for (problem_id, mutation, name), o in outcomes.items()
+                if problem_id == entry.id and mutation is None}
+        mutated = None
+        if run_mutations(level) and entry.problem is not None:
+            mutated = {m.name: {name: o for (problem_id, mutation, name), o in outcomes.items()
+                                if problem_id == entry.id and mutation == m.name} for m in entry.problem.mutations}
+        records.append(judge(entry, mine, level, mutated))
     return records
+
+
+def run_mutations(level):
+    """The full suite runs every problem's mutations; the base suite (the test suite) does not,
+    to stay fast."""
+    return level == "full"
 
