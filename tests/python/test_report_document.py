@@ -189,7 +189,8 @@ def test_fields_other_parts_of_the_harness_add_are_shown(tmp_path, monkeypatch):
     problem = load_problem(PROBLEMS / "RB-TENSION" / "problem.toml")
     record = made_up_record(problem, 0)
     record["metrics"][0]["tolerance_basis"] = "derived"
-    record["mutations"] = [{"name": "ks-half", "overrides": ["joint_material[0].ks=5e8"], "caught": True}]
+    record["mutations"] = [{"name": "ks-half", "overrides": ["joint_material[0].ks=5e8"], "caught": True,
+                            "rejected_by": ["#1"], "message": ""}]
     digest = "0123456789abcdef" * 4
     harness = report.harness_info()
     monkeypatch.setattr(report, "harness_info",
