@@ -1,6 +1,8 @@
 #pragma once
 // Builds scenes from TOML text for unit tests (through the real reader, so tests exercise the
 // same path as users).
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -9,8 +11,14 @@
 
 namespace vdec::testing {
 
+// A folder of this test process's own, so that test runs side by side (two build trees, two
+// worktrees) do not write over each other's scene files.
+inline std::filesystem::path unitTestFolder() {
+  return std::filesystem::temp_directory_path() / ("vdec-unit-" + std::to_string(::getpid()));
+}
+
 inline std::string writeSceneFile(const std::string& text, const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / "vdec-unit";
+  const auto dir = unitTestFolder();
   std::filesystem::create_directories(dir);
   const auto path = (dir / (name + ".toml")).string();
   std::ofstream(path) << text;

@@ -70,7 +70,7 @@ bool isInteger(const std::string& token) { return token.find_first_of(".e") == s
 // Writes `text` as scene.toml (and the tables as given) in a fresh folder; returns its path.
 std::string writeScene(const std::string& name, const std::string& text, const std::string& ramp,
                        const std::string& far) {
-  const auto dir = std::filesystem::temp_directory_path() / "vdec-unit" / name;
+  const auto dir = vdec::testing::unitTestFolder() / name;
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "scene.toml") << text;
   std::ofstream(dir / "ramp.csv") << ramp;

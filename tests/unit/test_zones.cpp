@@ -437,7 +437,7 @@ TEST(Zoning, DelaunayRefinementGivesQualityTrianglesFillingThePolygon) {
 
 TEST(Zones, TableHistoryExcavationAndOutputInputErrorsNameTheKey) {
   VDEC_REQUIREMENTS("REQ-ZONE-005,REQ-ZONE-012,REQ-ZONE-013,REQ-ZONE-010");
-  const auto dir = std::filesystem::temp_directory_path() / "vdec-unit";
+  const auto dir = vdec::testing::unitTestFolder();
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "falling.csv") << "angle_deg,sxx,syy,sxy\n0,1,2,3\n0,1,2,3\n";
   std::ofstream(dir / "short.csv") << "t,f\n0.0,1.0,7.0\n";
