@@ -70,7 +70,6 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
   ContactStepTotals totals;
   Blocks& bl = m.blocks;
   const double overlapLimit = 0.5 * m.roundingLength;
-  std::fill(m.gridpoints.contactForce.begin(), m.gridpoints.contactForce.end(), Vec2{});
   for (std::size_t i = 0; i < m.contacts.size(); ++i) {
     Contact& c = m.contacts[i];
     if (c.open && motionClock < c.closableAt) {

@@ -1,6 +1,7 @@
 #pragma once
 // The state of a vdec model: plain arrays indexed by small integer ids. Everything a stage
 // reads or writes lives here; stages own no state of their own beyond scratch buffers.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -93,7 +94,7 @@ struct Gridpoints {
   std::vector<Vec2> initialPosition;
   std::vector<Vec2> position;
   std::vector<Vec2> velocity;        // at t - dt/2 before the motion stage, t + dt/2 after
-  std::vector<Vec2> appliedForce;    // boundary tractions of the current step
+  std::vector<Vec2> tractionForce;   // boundary tractions of the current step (a per-step accumulator)
   std::vector<double> mass;          // inertial mass (density-scaled when asked, 1.3-32)
   std::vector<double> gravityMass;   // rho A / 3 from each zone around it
   std::vector<double> stiffness;     // k_i of 1.3-26 and 1.3-27 from the zones around it
@@ -241,6 +242,14 @@ struct Model {
   std::vector<Contact> contacts;
   // Parallel to contacts when a joint material is continuously yielding, else empty.
   std::vector<YieldingState> yieldingStates;
+  // The per-step force accumulators (block force and moment, gridpoint contact and traction
+  // forces), zeroed in one place at the start of every step before any stage adds to them.
+  void clearStepForces() {
+    std::fill(blocks.force.begin(), blocks.force.end(), Vec2{});
+    std::fill(blocks.moment.begin(), blocks.moment.end(), 0.0);
+    std::fill(gridpoints.contactForce.begin(), gridpoints.contactForce.end(), Vec2{});
+    std::fill(gridpoints.tractionForce.begin(), gridpoints.tractionForce.end(), Vec2{});
+  }
   bool hasYieldingJoints() const {
     for (const JointMaterial& j : jointMaterials)
       if (j.law == JointLaw::ContinuouslyYielding) return true;

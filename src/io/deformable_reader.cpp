@@ -192,7 +192,7 @@ void addDeformableBlock(Model& m, const std::string& name, int material, const M
     g.initialPosition.push_back(p);
     g.position.push_back(p);
     g.velocity.push_back({});
-    g.appliedForce.push_back({});
+    g.tractionForce.push_back({});
     g.driven.push_back(0);
   }
   Zones& z = m.zones;

@@ -9,15 +9,14 @@ namespace vdec {
 
 void applyEdgeTractions(Model& m) {
   Gridpoints& g = m.gridpoints;
-  std::fill(g.appliedForce.begin(), g.appliedForce.end(), Vec2{});
   for (const LoadedEdge& e : m.loadedEdges) {
     // Outward normal times length of a counter-clockwise boundary edge: (dy, -dx).
     const Vec2 d = g.position[e.to] - g.position[e.from];
     const Vec2 nL{d.y, -d.x};
     const double scale = e.history < 0 ? 1.0 : m.timeFunctions[e.history](m.time);
     const Vec2 traction = scale * Vec2{e.sxx * nL.x + e.sxy * nL.y, e.sxy * nL.x + e.syy * nL.y};
-    g.appliedForce[e.from] += 0.5 * traction;
-    g.appliedForce[e.to] += 0.5 * traction;
+    g.tractionForce[e.from] += 0.5 * traction;
+    g.tractionForce[e.to] += 0.5 * traction;
   }
 }
 
@@ -46,7 +45,7 @@ MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha, double l
     // The scale of the forces the zones put on the gridpoint, for the unbalanced-force ratio:
     // the sums of the components' magnitudes, one square root per gridpoint.
     const double zoneMagnitude = norm(absolute);
-    const Vec2 body = g.gravityMass[i] * gravity + g.appliedForce[i];
+    const Vec2 body = g.gravityMass[i] * gravity + g.tractionForce[i];
     // Contact forces are internal, like the zones': the joints' springs hold their energy.
     const Vec2 internal = contactForce ? zoneForce + contactForce[i] : zoneForce;
     const Vec2 load = internal + body;

@@ -9,7 +9,7 @@ namespace vdec {
 
 
 // Boundary tractions of the step: each loaded edge's stress times its current outward normal
-// and length, half to each end (Gridpoints::appliedForce).
+// and length, half to each end (Gridpoints::tractionForce).
 void applyEdgeTractions(Model& model);
 
 // Driven components with a time history take their velocity for the coming half step.

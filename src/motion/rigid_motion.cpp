@@ -70,8 +70,6 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha, double 
       totals.largestDisplacement =
           std::max(totals.largestDisplacement, (norm(v) + std::abs(w) * bl.boundingRadius[b]) * dt);
     }
-    bl.force[b] = {};
-    bl.moment[b] = 0.0;
   }
   return totals;
 }

@@ -11,7 +11,8 @@ namespace vdec {
 void setDrivenVelocities(Model& model, int b, double t);
 
 // Advances every block by one step: free degrees of freedom by 1.3-21 (translation and
-// rotation damped alike), driven ones at their prescribed velocity. Clears the force sums.
+// rotation damped alike), driven ones at their prescribed velocity, from the step's force sums
+// (Model::clearStepForces zeroes them at the start of the step).
 MotionStepTotals integrateRigidBlocks(Model& model, double dt, double massDamping, double localDamping = 0.0);
 
 // dt_b = FRAC * 2 sqrt(M_min / K_max), K_max = max(Kn, Ks) for point contacts and

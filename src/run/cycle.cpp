@@ -174,7 +174,8 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
 
 void Cycle::buildStages() {
   // Only the stages the scene needs: a single deformable block has no contacts, a scene of
-  // rigid blocks no zones.
+  // rigid blocks no zones. The step's force sums start from zero, in one place.
+  stages_.push_back({"start-of-step", [this] { model_.clearStepForces(); }, 0.0, false});
   if (hasContacts_) {
     stages_.push_back({"contact-detection", [this] {
                          if (model_.cycle > 0) {

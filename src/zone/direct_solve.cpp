@@ -92,10 +92,11 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
     }
   }
   // Loads: gravity and boundary tractions, plus the forces of the zones' present stresses.
+  m.clearStepForces();
   applyEdgeTractions(m);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(count);
   for (int i = 0; i < g.size(); ++i) {
-    const Vec2 load = g.gravityMass[i] * m.gravity + g.appliedForce[i];
+    const Vec2 load = g.gravityMass[i] * m.gravity + g.tractionForce[i];
     if (unknown[2 * i] >= 0) f[unknown[2 * i]] += load.x;
     if (unknown[2 * i + 1] >= 0) f[unknown[2 * i + 1]] += load.y;
   }
