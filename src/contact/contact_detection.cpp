@@ -13,6 +13,18 @@ namespace vdec {
 
 namespace {
 
+// A per-contact side array follows the contacts through a scan: entry k of the new list is the
+// previous entry origin[k], or fresh(contact k) for a contact the scan made. One permutation
+// serves every such array (the continuously-yielding state today).
+template <class T, class Fresh>
+void carryContactArray(std::vector<T>& array, const std::vector<int>& origin, std::vector<T>& spare, Fresh fresh,
+                       const std::vector<Contact>& contacts) {
+  spare.clear();
+  spare.reserve(origin.size());
+  for (std::size_t k = 0; k < origin.size(); ++k) spare.push_back(origin[k] >= 0 ? array[origin[k]] : fresh(contacts[k]));
+  std::swap(array, spare);
+}
+
 struct Key {
   int corner, blockB;
   bool operator<(const Key& o) const { return corner != o.corner ? corner < o.corner : blockB < o.blockB; }
@@ -145,10 +157,11 @@ void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
   std::vector<Contact> kept = std::move(spareContacts_);
   kept.clear();
   kept.reserve(found.size());
-  const bool yielding = m.hasYieldingJoints();
-  std::vector<YieldingState> keptStates = std::move(spareStates_);
-  keptStates.clear();
-  if (yielding) keptStates.reserve(found.size());
+  // Where each kept contact came from in the previous list (-1: new), for the per-contact side
+  // arrays, which follow the contacts through this one permutation.
+  std::vector<int>& origin = origin_;
+  origin.clear();
+  origin.reserve(found.size());
   for (const Candidate& f : found) {
     if (f.hit.kind == FeatureKind::Corner) {
       if (const Candidate* reverse = findFound(f.hit.feature, f.blockA)) {
@@ -161,7 +174,7 @@ void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
     // Carry the state of a contact that persists.
     if (const Contact* old = f.existing) {
       kept.push_back(*old);
-      if (yielding) keptStates.push_back(m.yieldingStates[old - previous.data()]);
+      origin.push_back(static_cast<int>(old - previous.data()));
       continue;
     }
     // A new contact. A joint contact's stress is its spring's from zero overlap: stress-free
@@ -196,19 +209,19 @@ void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
     }
     c.springEnergy = c.open ? 0.0 : contactWeight(j, c) * jointSpringEnergy(j, c);
     kept.push_back(c);
-    if (yielding) keptStates.push_back({j.initialFriction});
+    origin.push_back(-1);
   }
   if (moved != nullptr) {
     // The contacts between blocks neither of which was rescanned stay as they were. Both lists
     // are in key order; merged, the result is too.
     std::vector<Contact>& merged = mergedContacts_;
-    std::vector<YieldingState>& mergedStates = mergedStates_;
+    std::vector<int>& mergedOrigin = mergedOrigin_;
     merged.clear();
-    mergedStates.clear();
+    mergedOrigin.clear();
     std::size_t k = 0;
     auto takeKept = [&] {
       merged.push_back(kept[k]);
-      if (yielding) mergedStates.push_back(keptStates[k]);
+      mergedOrigin.push_back(origin[k]);
       ++k;
     };
     Key last{-1, -1};  // a key met twice (see byKeyThenClosed) is carried once
@@ -218,16 +231,17 @@ void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
       last = key;
       while (k < kept.size() && Key{kept[k].corner, kept[k].blockB} < key) takeKept();
       merged.push_back(old);
-      if (yielding) mergedStates.push_back(m.yieldingStates[index]);
+      mergedOrigin.push_back(index);
     }
     while (k < kept.size()) takeKept();
     std::swap(kept, merged);
-    std::swap(keptStates, mergedStates);
+    std::swap(origin, mergedOrigin);
   }
   spareContacts_ = std::move(m.contacts);
-  spareStates_ = std::move(m.yieldingStates);
   m.contacts = std::move(kept);
-  m.yieldingStates = std::move(keptStates);
+  if (m.hasYieldingJoints())
+    carryContactArray(m.yieldingStates, origin, spareStates_,
+                      [&m](const Contact& c) { return YieldingState{m.jointMaterials[c.joint].initialFriction}; }, m.contacts);
 }
 
 namespace {

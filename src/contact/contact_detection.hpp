@@ -53,7 +53,7 @@ class ContactDetection {
   std::vector<Contact> spareContacts_;
   std::vector<YieldingState> spareStates_;
   std::vector<Contact> mergedContacts_;
-  std::vector<YieldingState> mergedStates_;
+  std::vector<int> origin_, mergedOrigin_;
   std::vector<double> minX_, maxX_, minY_, maxY_;
 };
 

@@ -220,3 +220,53 @@ TEST(ContactLifecycle, ABlockLeftOutOfARescanCannotCloseOnItsNeighbourUnseen) {
   EXPECT_GT(touching, 0);           // the faces do meet
   EXPECT_EQ(touchingWithout, 0);
 }
+
+TEST(ContactLifecycle, SideArraysFollowTheirContactsThroughPartialAndFullScans) {
+  VDEC_REQUIREMENTS("REQ-CONTACT-004");
+  // The continuously-yielding state lives in an array beside the contacts; every scan reorders,
+  // drops and adds contacts, and the state must stay with its contact. A rider slides across a
+  // row of fixed blocks on continuously-yielding joints, rescanned alone (partial scans) and at
+  // times with every block (full scans): each contact's state is tagged with its key when it
+  // first appears, and after every step every contact must still carry its own tag.
+  std::string text = "[model]\nrounding = 0.01\ngravity = [0.0, -10.0]\n[solver]\nmass_damping = 200.0\n[stop]\ncycles = 1\n"
+                     "[[block_material]]\nname = \"rock\"\ndensity = 2500.0\n[[joint_material]]\nname = \"j\"\n"
+                     "law = \"continuously-yielding\"\nkn = 1e9\nks = 1e9\nfriction = 30.0\nroughness = 5e-4\n";
+  text += "[[block]]\nname = \"base\"\nmaterial = \"rock\"\nvertices = [[-1.0, -1.0], [7.0, -1.0], [7.0, 0.0], "
+          "[-1.0, 0.0]]\nfix = [\"x\", \"y\", \"rotation\"]\n";
+  for (int i = 0; i < 6; ++i) text += square("r" + std::to_string(i), i, 0, "fix = [\"x\", \"y\", \"rotation\"]\n");
+  text += "[[block]]\nname = \"rider\"\nmaterial = \"rock\"\nvertices = [[0.25, 1.0], [0.75, 1.0], [0.75, 1.5], "
+          "[0.25, 1.5]]\nfix = [\"x\", \"rotation\"]\nvelocity = [2.0, 0.0]\n";
+  Scene s = sceneFromText(text, "cy-rider");
+  ContactDetection detection;
+  detection.initialise(s.model);
+  Model& m = s.model;
+  auto tag = [](const Contact& c) { return 1.0 + c.corner * 1000.0 + c.blockB; };
+  int checked = 0, fresh = 0;
+  for (int step = 0; step < 400; ++step) {
+    ASSERT_EQ(m.yieldingStates.size(), m.contacts.size());
+    for (std::size_t i = 0; i < m.contacts.size(); ++i) {
+      YieldingState& y = m.yieldingStates[i];
+      if (y.plasticShear == 0.0) {  // a contact the scan made: tag it
+        y.plasticShear = tag(m.contacts[i]);
+        ++fresh;
+      }
+      ASSERT_EQ(y.plasticShear, tag(m.contacts[i])) << "step " << step << ", contact " << i;
+      ++checked;
+    }
+    // Move the rider by 2 cm and rescan it alone; every tenth step, every block.
+    const int rider = m.blocks.size() - 1;
+    m.blocks.centroid[rider].x += 0.02;
+    placeBlockVertices(m, rider);
+    if (step % 10 == 9) {
+      std::vector<int> all(m.blocks.size());
+      for (int b = 0; b < m.blocks.size(); ++b) all[b] = b;
+      detection.requestRescan(all);
+    } else {
+      detection.requestRescan({rider});
+    }
+    m.cycle = step + 1;
+    detection.update(m, 0.02);
+  }
+  EXPECT_GT(fresh, 20);     // contacts came and went along the row
+  EXPECT_GT(checked, 1000);
+}
