@@ -203,13 +203,25 @@ void ElasticZones(benchmark::State& state) {
 }
 
 // n x n crossed cells: 4 n^2 = 1 024, 10 000, 99 856 and 1 000 000 zones, each at 1 and 2
-// threads. Cycles per iteration: 4e7 zone-cycles, 1.4-1.9 s of one thread per timed window at
-// about 40 ns per zone-cycle (0.8-1.1 s at two threads); the whole set takes about 30 s.
+// threads, and between 1 024 and 1e5 the sizes where a second thread starts to pay (2 116, 4 096,
+// 6 400, 20 164 and 40 000 zones), from which the automatic thread count's threshold
+// (kWorkForThreads in core/parallel.hpp) was set. Cycles per iteration: about 4e7 zone-cycles,
+// 1-2 s of one thread per timed window at 25-40 ns per zone-cycle.
 BENCHMARK(ElasticZones)
     ->Args({16, 1, 40000})
     ->Args({16, 2, 40000})
+    ->Args({23, 1, 19000})
+    ->Args({23, 2, 19000})
+    ->Args({32, 1, 10000})
+    ->Args({32, 2, 10000})
+    ->Args({40, 1, 6250})
+    ->Args({40, 2, 6250})
     ->Args({50, 1, 4000})
     ->Args({50, 2, 4000})
+    ->Args({71, 1, 2000})
+    ->Args({71, 2, 2000})
+    ->Args({100, 1, 1000})
+    ->Args({100, 2, 1000})
     ->Args({158, 1, 400})
     ->Args({158, 2, 400})
     ->Args({500, 1, 40})

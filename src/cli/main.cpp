@@ -1,9 +1,12 @@
 // vdec: the command-line front end. `vdec run SCENE --out DIR` reads a scene, runs it and
 // writes DIR/results.json; the exit code says what went wrong (core/errors.hpp).
 #include <CLI/CLI.hpp>
+#include <omp.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <string>
@@ -12,6 +15,7 @@
 #include "run/cycle.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
+#include "core/parallel.hpp"
 #include "io/build_info.hpp"
 #include "io/results_writer.hpp"
 #include "io/scene_reader.hpp"
@@ -23,7 +27,29 @@ struct RunOptions {
   std::string scenePath, outDir;
   std::vector<std::string> overrides;
   bool profile = false;
+  int threads = 0;  // 0: chosen from the work
 };
+
+// Idle OpenMP threads spin before they sleep (libgomp: 300 000 polls, milliseconds), which on a
+// busy machine takes the CPU from the thread doing the work: two threads ran 2 to 14 times
+// slower than one with another job on one of two cores. Sleeping threads never ran slower than
+// one thread above the automatic count's threshold; on an idle machine they cost part of the
+// gain (docs/performance.md#threads). libgomp reads OMP_WAIT_POLICY once, as it is loaded,
+// before main: so the variable is set and vdec executes itself again. A policy the user set
+// (OMP_WAIT_POLICY or GOMP_SPINCOUNT) is kept.
+void waitPassivelyInOpenMp(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
+  setenv("OMP_WAIT_POLICY", "passive", 1);
+  execv("/proc/self/exe", argv);
+  unsetenv("OMP_WAIT_POLICY");  // no /proc: run on with the library's default
+}
+
+std::string openMpWaitPolicy() {
+  std::string policy;
+  for (const char* name : {"OMP_WAIT_POLICY", "GOMP_SPINCOUNT"})
+    if (const char* value = std::getenv(name)) policy += (policy.empty() ? "" : " ") + std::string(name) + "=" + value;
+  return policy.empty() ? "library default" : policy;
+}
 
 int runScene(const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -39,10 +65,18 @@ int runScene(const RunOptions& options) {
   scene.settings.progress = true;
   if (scene.settings.snapshotEvery > 0) vtk.prepare();
   scene.settings.snapshot = [&vtk](const vdec::Model& model) { vtk.write(model); };
+  vdec::RunEnvironment environment;
+  environment.threadsOption = options.threads;
+  environment.threads = options.threads > 0 ? options.threads
+                        : vdec::automaticThreadCount(static_cast<long long>(scene.model.zones.size()) +
+                                                         scene.model.gridpoints.size(),
+                                                     omp_get_max_threads());
+  environment.waitPolicy = openMpWaitPolicy();
+  omp_set_num_threads(environment.threads);
   vdec::Cycle cycle(scene.model, scene.settings, scene.histories);
   const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const vdec::RunReport report = cycle.run();
-  vdec::writeResults(outDir, scene, report, setup);
+  vdec::writeResults(outDir, scene, report, setup, environment);
   if (options.profile) {
     std::fprintf(stderr, "stage               seconds    share   ns/cycle\n");
     double total = 0.0;
@@ -51,8 +85,8 @@ int runScene(const RunOptions& options) {
       std::fprintf(stderr, "%-18s %9.4f %7.1f%% %10.1f\n", s.name.c_str(), s.seconds,
                    total > 0 ? 100.0 * s.seconds / total : 0.0,
                    report.cycles ? 1e9 * s.seconds / static_cast<double>(report.cycles) : 0.0);
-    std::fprintf(stderr, "cycles %lld, contacts %zu, blocks %d, detection scans %d\n", report.cycles,
-                 scene.model.contacts.size(), scene.model.blocks.size(), report.detectionScans);
+    std::fprintf(stderr, "cycles %lld, contacts %zu, blocks %d, detection scans %d, threads %d\n", report.cycles,
+                 scene.model.contacts.size(), scene.model.blocks.size(), report.detectionScans, environment.threads);
   }
   if (report.interruptSignal != 0) {
     std::fprintf(stderr, "vdec: interrupted by %s at cycle %lld, time %g s\n(results up to it written to %s/results.json)\n",
@@ -79,6 +113,7 @@ int runScene(const RunOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  waitPassivelyInOpenMp(argv);
   CLI::App app{"vdec: Verified Distinct Element Code, a 2D distinct element code for jointed rock"};
   app.set_version_flag("--version", std::string("vdec ") + vdec::build::version + " (" + vdec::build::gitCommit +
                                         ", " + vdec::build::buildType + ", " + vdec::build::compiler + ")");
@@ -93,6 +128,10 @@ int main(int argc, char** argv) {
       });
   run->add_option("--set", options.overrides, "override a scene key, e.g. --set solver.frac=0.2 (repeatable)");
   run->add_flag("--profile", options.profile, "print the time spent in each stage of the cycle");
+  run->add_option("--threads", options.threads,
+                  "OpenMP threads for the zone and gridpoint loops; 0 (the default): one for a small model, "
+                  "else OMP_NUM_THREADS or every processor")
+      ->check(CLI::Range(0, 1024));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

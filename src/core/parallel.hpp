@@ -1,14 +1,29 @@
 #pragma once
-// Loops over zones and gridpoints on all threads with results that do not depend on the number
-// of threads: every element writes only its own slots, and reductions are formed per fixed-size
-// chunk and then combined in chunk order, so the additions happen in the same order at 1 or N
-// threads.
+// Loops over zones and gridpoints on the run's threads with results that do not depend on the
+// number of threads: every element writes only its own slots, and reductions are formed per
+// fixed-size chunk and then combined in chunk order, so the additions happen in the same order at
+// 1 or N threads.
 #include <cstddef>
 #include <vector>
 
 namespace vdec {
 
 inline constexpr int kReduceChunk = 1024;
+
+// The work of a step that the threads share: the zone-forces and gridpoint-motion loops, over
+// zones and gridpoints. Contacts are computed on one thread and do not count.
+// Below kWorkForThreads elements per step a second thread does not pay: with idle threads
+// sleeping (OMP_WAIT_POLICY=passive, as vdec sets it) every loop wakes the other thread, which
+// takes tens of microseconds, and waits for it at the loop's end. Measured on an idle 2-core
+// machine: two threads 1.00 times as fast as one at 21 721 elements, 1.21 times at 30 389
+// (docs/performance.md#threads).
+inline constexpr long long kWorkForThreads = 30000;
+
+// The thread count for a run that does not set one: one below kWorkForThreads, else all
+// `available` (the OpenMP maximum: OMP_NUM_THREADS, or the number of processors).
+inline int automaticThreadCount(long long workPerStep, int available) {
+  return workPerStep < kWorkForThreads || available < 1 ? 1 : available;
+}
 
 // Calls f(i, acc) for i in [0, n), each chunk with its own accumulator starting from T{}, and
 // combines the chunk accumulators in order with combine(total, chunk). f must write only to

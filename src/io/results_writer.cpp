@@ -32,7 +32,7 @@ const char* jointLawName(JointLaw law) {
 
 // Where and when the file was written: provenance that differs between two runs of one scene,
 // kept apart from the results so that comparing two runs can drop it in one place.
-nlohmann::json environment() {
+nlohmann::json environment(const RunEnvironment& run) {
   char host[256] = {};
   gethostname(host, sizeof host - 1);
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -40,7 +40,8 @@ nlohmann::json environment() {
   gmtime_r(&now, &utc);
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return {{"host", host}, {"written_utc", stamp}};
+  return {{"host", host}, {"written_utc", stamp}, {"threads", run.threads}, {"threads_option", run.threadsOption},
+          {"openmp_wait_policy", run.waitPolicy}};
 }
 
 // Deformable blocks: per gridpoint its initial position and displacement, per zone its centroid
@@ -112,7 +113,8 @@ void prepareOutputDirectory(const std::string& dir) {
                       "); remove it or choose another --out");
 }
 
-void writeResults(const std::string& dir, const Scene& scene, const RunReport& report, double setupSeconds) {
+void writeResults(const std::string& dir, const Scene& scene, const RunReport& report, double setupSeconds,
+                  const RunEnvironment& environmentOfRun) {
   using nlohmann::json;
   const Model& m = scene.model;
   json j;
@@ -122,7 +124,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                    {"git_commit", build::gitCommit},
                    {"build_type", build::buildType},
                    {"compiler", build::compiler}};
-  j["environment"] = environment();
+  j["environment"] = environment(environmentOfRun);
   j["scene"] = {{"path", scene.path}, {"sha256", scene.sha256}, {"overrides", scene.overrides}, {"title", scene.title},
                 {"warnings", scene.warnings}};
   json profile = json::object();

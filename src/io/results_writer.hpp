@@ -13,8 +13,17 @@ namespace vdec {
 // that fails before it has results leaves none. Throws OutputError naming the path.
 void prepareOutputDirectory(const std::string& dir);
 
+// How the run was carried out: provenance for the environment object (it differs between runs
+// of one scene; the results do not).
+struct RunEnvironment {
+  int threads = 1;        // OpenMP threads the run used
+  int threadsOption = 0;  // --threads as given; 0: chosen from the work
+  std::string waitPolicy; // how idle OpenMP threads wait (parallel.hpp)
+};
+
 // Writes dir/results.json under a temporary name renamed over it (io/atomic_file.hpp), creating
 // dir. Throws OutputError naming the path on failure.
-void writeResults(const std::string& dir, const Scene& scene, const RunReport& report, double setupSeconds);
+void writeResults(const std::string& dir, const Scene& scene, const RunReport& report, double setupSeconds,
+                  const RunEnvironment& environment);
 
 }  // namespace vdec
