@@ -372,7 +372,11 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
       TableReader j(*jt, jp, path);
       JointSetSpec s;
       s.angleDeg = j.number("angle");
+      // A direction: beyond a turn either way the number only loses the digits that place it.
+      if (!(std::abs(s.angleDeg) <= 360.0)) j.fail("angle", "must be in [-360, 360] degrees, got " + shown(s.angleDeg));
       s.angleVariationDeg = j.nonNegative("angle_variation", 0.0);
+      if (!(s.angleVariationDeg <= 90.0))
+        j.fail("angle_variation", "must be in [0, 90] degrees, got " + shown(s.angleVariationDeg));
       s.spacing = j.positive("spacing");
       s.spacingVariation = j.nonNegative("spacing_variation", 0.0);
       if (s.spacingVariation >= s.spacing) j.fail("spacing_variation", "must be less than spacing");

@@ -32,7 +32,7 @@ inline std::string shown(double v) {
 
 // A count, or an estimate of one, as a whole number (in exponent form beyond 1e15).
 inline std::string shownCount(double v) {
-  return v < 1e15 ? std::to_string(static_cast<long long>(std::ceil(v))) : shown(v);
+  return std::abs(v) < 1e15 ? std::to_string(static_cast<long long>(std::ceil(v))) : shown(v);
 }
 
 // Reads one TOML table, remembering which keys were used so that unknown ones are errors.

@@ -143,6 +143,13 @@ to = [5.0, 1.0]
   const Scene s = sceneFromText(text, "region");
   EXPECT_EQ(s.model.blocks.size(), 8);
   EXPECT_EQ(s.model.blocks.name[0], "wall.1");
+  // A joint direction beyond a turn either way, or a variation beyond a right angle, is refused
+  // (-1e308 degrees reached an undefined conversion while the region's size was estimated).
+  EXPECT_NE(sceneError(replaced(text, "angle = 90.0", "angle = -1e308"), "angle").find("must be in [-360, 360] degrees"),
+            std::string::npos);
+  EXPECT_NE(sceneError(replaced(text, "angle = 90.0", "angle = 90.0\nangle_variation = 91.0"), "variation")
+                .find("key 'region[0].joint_set[0].angle_variation': must be in [0, 90] degrees"),
+            std::string::npos);
   double mass = 0.0;
   for (double m : s.model.blocks.mass) mass += m;
   EXPECT_NEAR(mass, 2000.0 * 8.0, 1e-9);
