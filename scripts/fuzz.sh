@@ -97,4 +97,4 @@ if [ "$status" -ne 0 ]; then
   exit 1
 fi
 grep -E '^stat::number_of_executed_units|^stat::new_units_added' "$work/fuzz.log" | sed 's/^/fuzz: /' >&2 || true
-echo "fuzz: PASS: no finding in $seconds s" >&2
+echo "fuzz: PASS: no finding (time limit $seconds s; inputs run as counted above)" >&2
