@@ -30,6 +30,9 @@ void readPlasticity(TableReader& r, BlockMaterial& mat, std::vector<std::string>
   mc.cohesion = cohesion;
   // Without a cut-off the tensile strength is the apex of the Mohr-Coulomb cone, c / tan(phi).
   const double apex = cohesion / std::tan(phi);
+  if (!std::isfinite(apex))
+    r.fail("friction", shown(friction) + " degrees with a cohesion of " + shown(cohesion) +
+                           " Pa puts the cone's apex c / tan(phi) at infinity; give a larger friction angle");
   mc.tension = r.has("tension") ? r.nonNegative("tension", 0.0) : apex;
   if (mc.tension > apex) r.fail("tension", "must not exceed the cone's apex c / tan(phi) = " + shown(apex) + " Pa");
   mat.plastic = true;
