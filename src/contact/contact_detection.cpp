@@ -33,7 +33,7 @@ struct Key {
 
 }  // namespace
 
-std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m) {
+void ContactDetection::measureBoxes(const Model& m) {
   const int n = m.blocks.size();
   const double inflate = 0.5 * m.contactTolerance;
   minX_.assign(n, INFINITY);
@@ -47,6 +47,10 @@ std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m
     maxY_[b] = std::max(maxY_[b], p.y + inflate);
   };
   for (int v = 0; v < m.vertices.size(); ++v) extend(m.vertices.block[v], m.vertices.geometry[v].position);
+}
+
+std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m) {
+  measureBoxes(m);
   return overlappingPairs(minX_, maxX_, minY_, maxY_, grid_);
 }
 
@@ -295,38 +299,29 @@ void ContactDetection::checkStepReach(const Model& m, double dt, double largestS
   // Per block: a translation shared by every point (rigid blocks) and a spread on top of it
   // (rotation, or a deformable block's largest gridpoint motion), so that blocks moving together
   // do not count as approaching.
-  std::vector<Vec2> translation(n);
-  std::vector<double> spread(n, 0.0);
+  translation_.assign(n, Vec2{});
+  spread_.assign(n, 0.0);
   for (int b = 0; b < n; ++b)
     if (!bl.deformable[b]) {
-      translation[b] = dt * bl.velocity[b];
-      spread[b] = std::abs(bl.angularVelocity[b]) * dt * bl.boundingRadius[b];
+      translation_[b] = dt * bl.velocity[b];
+      spread_[b] = std::abs(bl.angularVelocity[b]) * dt * bl.boundingRadius[b];
     }
   for (int i = 0; i < m.gridpoints.size(); ++i) {
     const int b = m.gridpoints.block[i];
-    spread[b] = std::max(spread[b], norm(m.gridpoints.velocity[i]) * dt);
+    spread_[b] = std::max(spread_[b], norm(m.gridpoints.velocity[i]) * dt);
   }
-  std::vector<double> minX(n, INFINITY), maxX(n, -INFINITY), minY(n, INFINITY), maxY(n, -INFINITY);
-  for (int v = 0; v < m.vertices.size(); ++v) {
-    const int b = m.vertices.block[v];
-    const Vec2 p = m.vertices.geometry[v].position;
-    minX[b] = std::min(minX[b], p.x);
-    maxX[b] = std::max(maxX[b], p.x);
-    minY[b] = std::min(minY[b], p.y);
-    maxY[b] = std::max(maxY[b], p.y);
-  }
-  // A pair can pass the limit only if one of its blocks moved half of it.
-  std::vector<char> fast(n);
-  for (int b = 0; b < n; ++b) fast[b] = norm(translation[b]) + spread[b] > 0.5 * limit;
+  // The detection's boxes, each grown by half the tolerance: two within their relative motion of
+  // each other were within the tolerance before the step or are now.
+  measureBoxes(m);
+  auto moved = [&](int b) { return norm(translation_[b]) + spread_[b]; };
   for (int a = 0; a < n; ++a) {
-    if (!fast[a]) continue;
+    if (moved(a) <= 0.5 * limit) continue;  // a pair can pass the limit only if one of it moved half
     for (int b = 0; b < n; ++b) {
-      if (b == a || (fast[b] && b < a)) continue;  // a fast pair is judged once
-      const double relative = norm(translation[a] - translation[b]) + spread[a] + spread[b];
+      if (b == a || (b < a && moved(b) > 0.5 * limit)) continue;  // a pair of fast blocks is judged once
+      const double relative = norm(translation_[a] - translation_[b]) + spread_[a] + spread_[b];
       if (relative <= limit) continue;
-      // Within reach: the boxes of where the two were and are, apart by less than the tolerance.
-      const double reach = relative + m.contactTolerance;
-      if (minX[a] > maxX[b] + reach || minX[b] > maxX[a] + reach || minY[a] > maxY[b] + reach || minY[b] > maxY[a] + reach)
+      if (minX_[a] > maxX_[b] + relative || minX_[b] > maxX_[a] + relative || minY_[a] > maxY_[b] + relative ||
+          minY_[b] > maxY_[a] + relative)
         continue;
       std::ostringstream s;
       s << "blocks '" << bl.name[a] << "' and '" << bl.name[b] << "' moved " << relative

@@ -32,6 +32,8 @@ class ContactDetection {
   // All blocks (moved == nullptr), or those flagged in moved and the contacts they take part in.
   void scan(Model& model, const std::vector<char>* moved = nullptr);
   std::vector<std::pair<int, int>> candidatePairs(const Model& model);
+  // Each block's bounding box, grown by half the contact tolerance, into minX_ .. maxY_.
+  void measureBoxes(const Model& model);
   void measureDisplacements(const Model& model);
 
   double motionSinceScan_ = 0.0;  // path of the fastest vertex since the last measure
@@ -55,6 +57,8 @@ class ContactDetection {
   std::vector<Contact> mergedContacts_;
   std::vector<int> origin_, mergedOrigin_;
   std::vector<double> minX_, maxX_, minY_, maxY_;
+  std::vector<Vec2> translation_;  // checkStepReach's per-block motion of the step
+  std::vector<double> spread_;
 };
 
 }  // namespace vdec
