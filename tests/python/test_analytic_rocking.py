@@ -473,3 +473,34 @@ def test_toppling_rejects_bad_input():
         rk.toppling_time(0.1, width=0.25, height=1.0, beta_deg=95.0, g=9.81)
     with pytest.raises(ValueError):
         rk.static_topples(width=0.0, height=1.0, beta_deg=10.0)
+
+
+@REQ
+@pytest.mark.parametrize("share", [0.25, 0.9])
+def test_first_impact_time_is_the_fall_of_the_equation_of_motion(share):
+    # Integrated here from I_O theta'' = -m g R sin(alpha - theta) written for the lean
+    # phi = theta0 - (rotation towards the face), with I_O = (4/3) m R^2, independent of the
+    # quadrature: the time at which the lean reaches zero.
+    from scipy.integrate import solve_ivp
+    b, h, g = 0.5, 1.0, 9.81
+    radius, alpha = math.hypot(b, h), math.atan(b / h)
+    theta0 = share * alpha
+
+    def rhs(_, y):
+        return [y[1], -0.75 * g / radius * math.sin(alpha - y[0])]
+
+    def landed(_, y):
+        return y[0]
+    landed.terminal, landed.direction = True, -1
+    fall = solve_ivp(rhs, (0.0, 10.0), [theta0, 0.0], events=landed, rtol=1e-12, atol=1e-14, method="DOP853")
+    assert rk.rectangle_first_impact_time(theta0=theta0, b=b, h=h, g=g) == pytest.approx(fall.t_events[0][0], rel=1e-9)
+
+
+@REQ
+def test_first_impact_time_of_a_slender_block_is_housners_quarter_period():
+    # alpha = 0.01: the linearisation's error, ~ alpha^2 / 12, is below 1e-5
+    b, h, g = 0.01, 1.0, 9.81
+    radius, alpha = math.hypot(b, h), math.atan(b / h)
+    p = math.sqrt(3.0 * g / (4.0 * radius))
+    assert rk.rectangle_first_impact_time(theta0=0.5 * alpha, b=b, h=h, g=g) == \
+        pytest.approx(rk.housner_period(theta0=0.5 * alpha, alpha=alpha, p=p) / 4.0, rel=1e-5)

@@ -174,6 +174,15 @@ def rocking_period(*, theta0, alpha, p):
     return 4.0 * _fall_time(alpha - abs(theta0), alpha, p)
 
 
+def rectangle_first_impact_time(*, theta0, b, h, g):
+    """Time from the release at rest, tilted by theta0 on a bottom corner, to the first impact
+    (the face landing, theta = 0) of a rectangular block of half-width b and half-height h:
+    a quarter of rocking_period with alpha = atan(b / h) and p^2 = 3 g / (4 R). Measured from
+    the release, it needs no assumption about the impact that follows."""
+    radius, alpha = block_radius_and_slenderness(b=b, h=h)
+    return rocking_period(theta0=theta0, alpha=alpha, p=rectangle_frequency_parameter(g=g, R=radius)) / 4.0
+
+
 def rocking_angular_velocity(theta, *, theta0, alpha, p):
     """|omega| of free rocking at rotation theta, released from rest at theta0, from energy
     conservation about the pivot corner (elastic impacts, no loss):
