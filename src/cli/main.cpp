@@ -98,6 +98,14 @@ int runScene(const RunOptions& options) {
     std::fprintf(stderr, "vdec: warning: stopped on %s before the unbalanced-force ratio fell to %g (last %.3e): "
                  "the model may not be in equilibrium\n", report.stopReason.c_str(), ratio,
                  report.lastMonitors.unbalancedRatio);
+  for (std::size_t i = 0; i < report.phases.size(); ++i) {
+    const vdec::PhaseReport& p = report.phases[i];
+    const double phaseRatio = scene.settings.phases[i].stop.ratio;
+    if (phaseRatio > 0 && (p.stopReason == "cycles" || p.stopReason == "time"))
+      std::fprintf(stderr, "vdec: warning: phase '%s' stopped on %s before the unbalanced-force ratio fell to %g "
+                   "(last %.3e): the model may not be in equilibrium\n", p.name.c_str(), p.stopReason.c_str(),
+                   phaseRatio, p.unbalancedRatio);
+  }
   if (report.staticSolveResidual > 1e-6)
     std::fprintf(stderr, "vdec: warning: the direct solve did not converge (last residual %.3e of the forces): joints "
                  "slipped or opened under its load, which its linear springs do not follow; the explicit cycles went "

@@ -16,6 +16,7 @@ enum class ExitCode : int {
   ContactOverlap = 6,     // overlap beyond half the rounding length
   Output = 7,             // results could not be written
   Interrupted = 8,        // SIGINT or SIGTERM: stopped between two steps, results so far written
+  NotInEquilibrium = 9,   // a phase with require_equilibrium ended on its cycle or time limit
 };
 
 class Error : public std::runtime_error {
@@ -38,6 +39,9 @@ struct InstabilityError : Error {
 };
 struct OverlapError : Error {
   explicit OverlapError(const std::string& m) : Error(ExitCode::ContactOverlap, m) {}
+};
+struct EquilibriumError : Error {
+  explicit EquilibriumError(const std::string& m) : Error(ExitCode::NotInEquilibrium, m) {}
 };
 struct OutputError : Error {
   explicit OutputError(const std::string& m) : Error(ExitCode::Output, m) {}

@@ -154,6 +154,19 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                  {"plastic_dissipation", report.energy.plasticDissipation},
                  {"damping_dissipation", report.energy.dampingDissipation},
                  {"largest_excess", report.energy.largestExcess}};
+  if (!report.phases.empty()) {
+    json phases = json::array();
+    for (const PhaseReport& p : report.phases)
+      phases.push_back({{"name", p.name},
+                        {"stop_reason", p.stopReason},
+                        {"start_cycle", p.startCycle},
+                        {"cycles", p.cycles},
+                        {"start_time", p.startTime},
+                        {"time", p.time},
+                        {"unbalanced_ratio", p.unbalancedRatio},
+                        {"wall_seconds", p.wallSeconds}});
+    j["phases"] = phases;
+  }
   json histories = json::object();
   // The specs are in the scene; the series are in the report, in the same order.
   for (std::size_t i = 0; i < scene.histories.size() && i < report.histories.size(); ++i)

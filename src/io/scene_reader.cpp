@@ -154,6 +154,67 @@ void addBlock(Model& m, const BlockInput& in) {
 
 }  // namespace
 
+static StopCriteria readStop(TableReader& t) {
+  StopCriteria s;
+  if (t.has("cycles")) {
+    s.cycles = t.integer("cycles");
+    if (s.cycles <= 0) t.fail("cycles", "must be > 0");
+  }
+  if (t.has("time")) s.time = t.positive("time");
+  if (t.has("ratio")) s.ratio = t.positive("ratio");
+  if (s.cycles < 0 && s.time < 0 && s.ratio < 0) t.failTable("set at least one of cycles, time or ratio");
+  if (s.ratio > 0 && s.cycles < 0 && s.time < 0)
+    t.fail("ratio", "needs a limit as well: set cycles or time, so that a run that never reaches the ratio ends");
+  t.finish();
+  return s;
+}
+
+static Phase readPhase(TableReader& r, const Model& m) {
+  Phase phase;
+  phase.name = r.string("name");
+  auto stop = r.subtable("stop");
+  if (!stop) r.fail("stop", "is required: each phase sets stop = { cycles, time or ratio }");
+  phase.stop = readStop(*stop);
+  phase.requireEquilibrium = r.boolean("require_equilibrium", false);
+  if (phase.requireEquilibrium && phase.stop.ratio < 0)
+    r.fail("require_equilibrium", "needs stop.ratio: equilibrium is the unbalanced-force ratio falling to it");
+  PhaseChanges& c = phase.changes;
+  if (r.has("gravity")) c.gravity = r.vec2("gravity");
+  if (r.has("mass_damping") && r.has("adaptive_damping"))
+    r.fail("mass_damping", "give mass_damping or adaptive_damping, not both");
+  if (r.has("mass_damping")) c.massDamping = r.nonNegative("mass_damping", 0.0);
+  if (r.has("adaptive_damping")) c.adaptiveDamping = r.boolean("adaptive_damping", false);
+  for (const std::string& what : r.has("reset") ? r.strings("reset") : std::vector<std::string>{}) {
+    if (what == "displacements") c.resetDisplacements = true;
+    else if (what == "velocities") c.resetVelocities = true;
+    else r.fail("reset", "unknown item '" + what + "'; use \"displacements\" and/or \"velocities\"");
+  }
+  for (auto [table, prefix] : r.tables("joint_material")) {
+    TableReader jr(*table, prefix, r.file());
+    const std::string name = jr.string("name");
+    JointStrengthChange change;
+    for (std::size_t i = 0; i < m.jointMaterials.size(); ++i)
+      if (m.jointMaterials[i].name == name) change.material = static_cast<int>(i);
+    if (change.material < 0) jr.fail("name", "no joint material named '" + name + "'");
+    const JointMaterial& j = m.jointMaterials[change.material];
+    if (j.law == JointLaw::ContinuouslyYielding)
+      jr.fail("name", "joint material '" + name + "' is continuously yielding; a phase changes the friction, cohesion "
+                      "and tension of the Coulomb and point-contact laws only");
+    if (jr.has("friction")) change.tanFriction = std::tan(radians(jr.angleDegrees("friction", 0.0)));
+    if (jr.has("cohesion")) change.cohesion = jr.nonNegative("cohesion", 0.0);
+    if (jr.has("tension")) change.tension = jr.nonNegative("tension", 0.0);
+    if (j.law == JointLaw::PointContact && (change.cohesion.value_or(0.0) > 0 || change.tension.value_or(0.0) > 0))
+      jr.fail(change.cohesion.value_or(0.0) > 0 ? "cohesion" : "tension",
+              "the point-contact law has no cohesion or tensile strength");
+    jr.finish();
+    if (!change.tanFriction && !change.cohesion && !change.tension)
+      jr.failTable("changes nothing: give friction, cohesion and/or tension");
+    c.joints.push_back(change);
+  }
+  r.finish();
+  return phase;
+}
+
 Scene readScene(const std::string& path, const std::vector<std::string>& overrides) {
   std::ifstream stream(path, std::ios::binary);
   if (!stream) throw SceneError(path + ": cannot open the scene file");
@@ -274,20 +335,20 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     scene.settings.staticSolve = t->boolean("static_solve", false);
     t->finish();
   }
-  {
-    auto t = top.subtable("stop");
-    if (!t) top.fail("stop", "is required: set [stop] cycles, time or ratio");
-    StopCriteria& s = scene.settings.stop;
-    if (t->has("cycles")) {
-      s.cycles = t->integer("cycles");
-      if (s.cycles <= 0) t->fail("cycles", "must be > 0");
+  if (top.has("phase")) {
+    if (top.has("stop"))
+      top.fail("stop", "with [[phase]] tables each phase has its own stop; move [stop] into the phases and remove it");
+    for (auto [table, prefix] : top.tables("phase")) {
+      TableReader r(*table, prefix, path);
+      scene.settings.phases.push_back(readPhase(r, m));
+      for (std::size_t i = 0; i + 1 < scene.settings.phases.size(); ++i)
+        if (scene.settings.phases[i].name == scene.settings.phases.back().name)
+          r.fail("name", "phase '" + scene.settings.phases[i].name + "' is defined twice");
     }
-    if (t->has("time")) s.time = t->positive("time");
-    if (t->has("ratio")) s.ratio = t->positive("ratio");
-    if (s.cycles < 0 && s.time < 0 && s.ratio < 0) t->failTable("set at least one of cycles, time or ratio");
-    if (s.ratio > 0 && s.cycles < 0 && s.time < 0)
-      t->fail("ratio", "needs a limit as well: set cycles or time, so that a run that never reaches the ratio ends");
-    t->finish();
+  } else {
+    auto t = top.subtable("stop");
+    if (!t) top.fail("stop", "is required: set [stop] cycles, time or ratio (or give [[phase]] tables, each with its stop)");
+    scene.settings.stop = readStop(*t);
   }
 
   if (auto t = top.subtable("output")) {

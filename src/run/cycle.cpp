@@ -114,15 +114,7 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   for (const JointMaterial& j : model_.jointMaterials)
     if (j.law != JointLaw::PointContact) stepStiffness_ = std::max({stepStiffness_, j.kn, j.ks});
   alpha_ = settings_.adaptiveDamping ? kAdaptiveStart / dt_ : settings_.massDamping;
-  // 1.3-21 multiplies v(t - dt/2) by (1 - alpha dt/2) / (1 + alpha dt/2): past alpha dt = 2 that
-  // factor turns negative and every step reverses the motion instead of damping it.
-  if (!(alpha_ * dt_ <= 2.0)) {
-    std::ostringstream s;
-    s << "solver.mass_damping = " << alpha_ << " 1/s times the time step " << dt_ << " s is " << alpha_ * dt_
-      << ": above 2 the damping term of 1.3-21 reverses the velocities every step instead of damping them; give "
-      << "at most " << 2.0 / dt_ << " 1/s (critical damping of a mode of frequency w is alpha = 2 w)";
-    throw SceneError(s.str());
-  }
+  checkDamping("solver.mass_damping");
 
   // Driven velocities as the run starts, f(0) times the input, which the first history sample
   // shows; every step then sets them to f(t + dt/2).
@@ -170,6 +162,17 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   }
   energy_.open(initial, 1e-9 * std::max(scale + initial, 1e-200));
   buildStages();
+}
+
+void Cycle::checkDamping(const std::string& where) const {
+  // 1.3-21 multiplies v(t - dt/2) by (1 - alpha dt/2) / (1 + alpha dt/2): past alpha dt = 2 that
+  // factor turns negative and every step reverses the motion instead of damping it.
+  if (alpha_ * dt_ <= 2.0) return;
+  std::ostringstream s;
+  s << where << " = " << alpha_ << " 1/s times the time step " << dt_ << " s is " << alpha_ * dt_
+    << ": above 2 the damping term of 1.3-21 reverses the velocities every step instead of damping them; give "
+    << "at most " << 2.0 / dt_ << " 1/s (critical damping of a mode of frequency w is alpha = 2 w)";
+  throw SceneError(s.str());
 }
 
 void Cycle::buildStages() {
@@ -383,14 +386,103 @@ void Cycle::recordHistories(bool initial) {
   }
 }
 
-bool Cycle::stopReached(std::string& reason) const {
-  const StopCriteria& s = settings_.stop;
-  // The ratio first: a run that reaches it on the step its limit falls due did reach it.
-  if (s.ratio > 0 && model_.cycle > 0 && monitors_.unbalancedRatio <= s.ratio) { reason = "ratio"; return true; }
-  if (s.cycles >= 0 && model_.cycle >= s.cycles) { reason = "cycles"; return true; }
+bool Cycle::stopReached(const StopCriteria& s, long long startCycle, double startTime, std::string& reason) const {
+  // The ratio first: a run that reaches it on the step its limit falls due did reach it. A
+  // phase takes at least one step before its ratio counts: the last one measured the state
+  // before the phase's changes.
+  if (s.ratio > 0 && model_.cycle > startCycle && monitors_.unbalancedRatio <= s.ratio) { reason = "ratio"; return true; }
+  if (s.cycles >= 0 && model_.cycle - startCycle >= s.cycles) { reason = "cycles"; return true; }
   // Half a step of slack so that a time that is a multiple of dt is reached, not overshot.
-  if (s.time >= 0 && model_.time >= s.time - 0.5 * dt_) { reason = "time"; return true; }
+  if (s.time >= 0 && model_.time - startTime >= s.time - 0.5 * dt_) { reason = "time"; return true; }
   return false;
+}
+
+void Cycle::beginPhase(const PhaseChanges& changes) {
+  if (changes.gravity) model_.gravity = *changes.gravity;
+  for (const JointStrengthChange& change : changes.joints) {
+    JointMaterial& j = model_.jointMaterials[change.material];
+    if (change.tanFriction) j.tanFriction = *change.tanFriction;
+    if (change.cohesion) j.cohesion = *change.cohesion;
+    if (change.tension) j.tension = *change.tension;
+  }
+  if (changes.adaptiveDamping) {
+    settings_.adaptiveDamping = *changes.adaptiveDamping;
+    alpha_ = settings_.adaptiveDamping ? kAdaptiveStart / dt_ : 0.0;
+    servoPower_ = servoRate_ = 0.0;
+  }
+  if (changes.massDamping) {
+    settings_.adaptiveDamping = false;
+    alpha_ = *changes.massDamping;
+  }
+  Blocks& bl = model_.blocks;
+  Gridpoints& g = model_.gridpoints;
+  if (changes.resetVelocities) {
+    // The kinetic energy taken away did no work: it leaves the energy supplied with it.
+    double removed = 0.0;
+    for (int b = 0; b < bl.size(); ++b) {
+      if (!bl.movesFreely(b)) continue;
+      removed += 0.5 * (bl.mass[b] * dot(bl.velocity[b], bl.velocity[b]) + bl.inertia[b] * bl.angularVelocity[b] * bl.angularVelocity[b]);
+      bl.velocity[b] = {0.0, 0.0};
+      bl.angularVelocity[b] = 0.0;
+    }
+    for (int i = 0; i < g.size(); ++i) {
+      if (g.driven[i] & DriveX) continue;
+      removed += 0.5 * g.mass[i] * g.velocity[i].x * g.velocity[i].x;
+      g.velocity[i].x = 0.0;
+    }
+    for (int i = 0; i < g.size(); ++i) {
+      if (g.driven[i] & DriveY) continue;
+      removed += 0.5 * g.mass[i] * g.velocity[i].y * g.velocity[i].y;
+      g.velocity[i].y = 0.0;
+    }
+    energy_.withdraw(removed);
+  }
+  if (changes.resetDisplacements) {
+    for (int b = 0; b < bl.size(); ++b) {
+      bl.initialCentroid[b] = bl.centroid[b];
+      bl.rotation[b] = 0.0;
+    }
+    for (int i = 0; i < g.size(); ++i) g.initialPosition[i] = g.position[i];
+  }
+}
+
+void Cycle::closePhase(PhaseReport& done, Clock::time_point started) const {
+  done.cycles = model_.cycle - done.startCycle;
+  done.time = model_.time - done.startTime;
+  done.unbalancedRatio = monitors_.unbalancedRatio;
+  done.wallSeconds = std::chrono::duration<double>(Clock::now() - started).count();
+}
+
+void Cycle::stepUntil(const StopCriteria& stop, std::string& reason) {
+  const bool progress = settings_.progress && isatty(STDERR_FILENO);
+  auto lastPrint = Clock::now();
+  const long long startCycle = model_.cycle;
+  const double startTime = model_.time;
+  while (!stopReached(stop, startCycle, startTime, reason)) {
+    // Between two steps, where the state is whole: a signal ends the run here (core/interrupt).
+    if (const int requested = interruptSignal(); requested != 0) {
+      reason = "interrupted";
+      return;
+    }
+    for (Stage& stage : stages_) {
+      if (settings_.profile) {
+        const auto t0 = Clock::now();
+        stage.step();
+        stage.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+      } else {
+        stage.step();
+      }
+    }
+    if (settings_.snapshotEvery > 0 && settings_.snapshot && model_.cycle % settings_.snapshotEvery == 0)
+      settings_.snapshot(model_);
+    if (progress && (model_.cycle & 255) == 0) {
+      const auto now = Clock::now();
+      if (now - lastPrint > std::chrono::milliseconds(250)) {
+        printProgress(false);
+        lastPrint = now;
+      }
+    }
+  }
 }
 
 void Cycle::printProgress(bool final) const {
@@ -402,41 +494,47 @@ void Cycle::printProgress(bool final) const {
 RunReport Cycle::run() {
   const auto start = Clock::now();
   const bool progress = settings_.progress && isatty(STDERR_FILENO);
-  auto lastPrint = start;
   if (!historySpecs_.empty()) recordHistories(true);
   RunReport report;
   const bool snapshots = settings_.snapshotEvery > 0 && settings_.snapshot;
   try {
     if (snapshots) settings_.snapshot(model_);
-    while (!stopReached(report.stopReason)) {
-      // Between two steps, where the state is whole: a signal ends the run here (core/interrupt).
-      if (const int requested = interruptSignal(); requested != 0) {
-        report.stopReason = "interrupted";
-        report.interruptSignal = requested;
-        report.errorCode = static_cast<int>(ExitCode::Interrupted);
-        break;
-      }
-      for (Stage& stage : stages_) {
-        if (settings_.profile) {
-          const auto t0 = Clock::now();
-          stage.step();
-          stage.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-        } else {
-          stage.step();
-        }
-      }
-      if (settings_.snapshotEvery > 0 && settings_.snapshot && model_.cycle % settings_.snapshotEvery == 0)
-        settings_.snapshot(model_);
-      if (progress && (model_.cycle & 255) == 0) {
-        const auto now = Clock::now();
-        if (now - lastPrint > std::chrono::milliseconds(250)) {
-          printProgress(false);
-          lastPrint = now;
+    if (settings_.phases.empty()) {
+      stepUntil(settings_.stop, report.stopReason);
+    } else {
+      for (const Phase& phase : settings_.phases) {
+        const auto phaseStart = Clock::now();
+        PhaseReport& done = report.phases.emplace_back();
+        phaseStart_ = phaseStart;
+        done.name = phase.name;
+        done.startCycle = model_.cycle;
+        done.startTime = model_.time;
+        beginPhase(phase.changes);
+        checkDamping("phase '" + phase.name + "': mass_damping");
+        stepUntil(phase.stop, done.stopReason);
+        closePhase(done, phaseStart);
+        report.stopReason = done.stopReason;
+        if (done.stopReason == "interrupted") break;
+        if (phase.requireEquilibrium && done.stopReason != "ratio") {
+          std::ostringstream s;
+          s << "phase '" << phase.name << "' has require_equilibrium = true but ended on its " << done.stopReason
+            << " limit with the unbalanced-force ratio at " << done.unbalancedRatio << ", above its stop.ratio "
+            << phase.stop.ratio << ": give the phase more cycles or time, more damping, or a larger ratio";
+          done.stopReason = "error";
+          throw EquilibriumError(s.str());
         }
       }
     }
+    if (report.stopReason == "interrupted") {
+      report.interruptSignal = interruptSignal();
+      report.errorCode = static_cast<int>(ExitCode::Interrupted);
+    }
     if (snapshots && model_.cycle % settings_.snapshotEvery != 0) settings_.snapshot(model_);
   } catch (const Error& e) {
+    if (!report.phases.empty() && report.phases.back().stopReason.empty()) {
+      report.phases.back().stopReason = "error";
+      closePhase(report.phases.back(), phaseStart_);
+    }
     report.stopReason = "error";
     report.error = e.what();
     report.errorCode = static_cast<int>(e.code());

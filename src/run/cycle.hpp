@@ -1,7 +1,9 @@
 #pragma once
 // The time loop: one step is a fixed sequence of named stages chosen once from the scene.
 // A stage is one indirect call per step; inside it, loops run over plain arrays.
+#include <chrono>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,38 @@ struct StopCriteria {
   double ratio = -1.0;
 };
 
+// A joint material's strength changed at the start of a phase (Coulomb laws only).
+struct JointStrengthChange {
+  int material = -1;
+  std::optional<double> tanFriction, cohesion, tension;
+};
+
+// What a phase changes before its first step. Unset members keep the state of the phase before.
+struct PhaseChanges {
+  std::optional<Vec2> gravity;
+  std::vector<JointStrengthChange> joints;
+  std::optional<double> massDamping;     // switches adaptive damping off
+  std::optional<bool> adaptiveDamping;
+  bool resetDisplacements = false;       // displacement histories and outputs measured from here
+  bool resetVelocities = false;
+};
+
+struct Phase {
+  std::string name;
+  StopCriteria stop;                 // counted from the phase's start
+  bool requireEquilibrium = false;   // ending on cycles or time is then an error
+  PhaseChanges changes;
+};
+
+struct PhaseReport {
+  std::string name;
+  std::string stopReason;
+  long long startCycle = 0, cycles = 0;
+  double startTime = 0.0, time = 0.0;
+  double unbalancedRatio = 0.0;
+  double wallSeconds = 0.0;
+};
+
 struct RunSettings {
   double frac = 0.1;          // FRAC of 1.3-28
   // The zone step as a fraction of 1.3-25's estimate of the critical one (the estimate already
@@ -31,6 +65,8 @@ struct RunSettings {
   bool densityScaling = false;   // gridpoint inertial masses scaled to one step (1.3-32 to 1.3-34)
   bool staticSolve = false;      // start from the direct solution of the elastic zones (zone/direct_solve)
   StopCriteria stop;
+  // Run in order; empty: one stage of the run, to `stop`.
+  std::vector<Phase> phases;
   bool profile = false;
   bool progress = false;
   // Snapshots: the caller's writer is called at the start, every `snapshotEvery` cycles and at
@@ -53,6 +89,7 @@ struct RunReport {
   std::vector<StageTiming> profile;
   std::vector<HistorySeries> histories;
   EnergyReport energy;
+  std::vector<PhaseReport> phases;  // one per [[phase]] begun
   Monitors lastMonitors;
   int detectionScans = 0;
   double staticSolveSeconds = -1.0;  // < 0: no direct solve
@@ -94,7 +131,11 @@ class Cycle {
   void checkReversingMotion(const StepTotals& totals);
   void checkStiffnessGrowth(const ContactStepTotals& totals) const;
   void recordHistories(bool initial);
-  bool stopReached(std::string& reason) const;
+  bool stopReached(const StopCriteria& s, long long startCycle, double startTime, std::string& reason) const;
+  void stepUntil(const StopCriteria& stop, std::string& reason);
+  void beginPhase(const PhaseChanges& changes);
+  void checkDamping(const std::string& where) const;
+  void closePhase(PhaseReport& done, std::chrono::steady_clock::time_point started) const;
   void printProgress(bool final) const;
 
   Model& model_;
@@ -125,6 +166,7 @@ class Cycle {
   double staticSolveSeconds_ = -1.0;
   double staticSolveResidual_ = -1.0;
   EnergyLedger energy_;
+  std::chrono::steady_clock::time_point phaseStart_;
   Monitors monitors_;
 };
 

@@ -41,6 +41,8 @@ class EnergyLedger {
     terms_.strain = strain;
   }
   void supplyHalf(double work) { supplied_ += 0.5 * work; }
+  // Energy taken out of the model without work (velocities reset between phases).
+  void withdraw(double energy) { supplied_ -= energy; }
   // kinetic + strain - supplied, recorded against the largest energy supplied so far, which it
   // also updates: the energy supplied can return to zero (a bouncing block back at its start),
   // where the discrete energies' O((w dt)^2) errors do not.

@@ -35,7 +35,7 @@ RUN_ENVIRONMENT = {**os.environ, "OMP_NUM_THREADS": os.environ.get("OMP_NUM_THRE
 LOOSE_TOLERANCE_RATIO = 20.0
 EXIT_MEANINGS = {0: "ok", 1: "internal error", 2: "command line error", 3: "scene input error", 4: "geometry error",
                  5: "numerical instability", 6: "contact overlap beyond half the rounding length",
-                 7: "output error"}
+                 7: "output error", 8: "interrupted", 9: "phase not in equilibrium"}
 
 
 @dataclass

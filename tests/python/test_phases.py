@@ -1,0 +1,174 @@
+"""Phases: changes at a phase's start, per-phase results, require_equilibrium, and the scene
+errors of [[phase]] tables (docs/user-manual/scene-format.md#phase)."""
+import json
+import math
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+VDEC = os.environ.get("VDEC_EXECUTABLE", str(ROOT / "build" / "vdec"))
+pytestmark = pytest.mark.skipif(not Path(VDEC).is_file(), reason="vdec is not built")
+REQ = pytest.mark.requirements("REQ-RUN-004")
+
+BLOCKS = """
+title = "a block resting on a base"
+[model]
+gravity = [0.0, -9.81]
+rounding = 0.01
+[[block_material]]
+name = "rock"
+density = 2500.0
+[[joint_material]]
+name = "j"
+kn = 1e10
+ks = 1e10
+friction = 30.0
+[[block]]
+name = "base"
+material = "rock"
+vertices = [[-3.0, -1.0], [3.0, -1.0], [3.0, 0.0], [-3.0, 0.0]]
+fix = ["x", "y", "rotation"]
+[[block]]
+name = "top"
+material = "rock"
+vertices = [[-1.0, 0.0], [1.0, 0.0], [1.0, 0.5], [-1.0, 0.5]]
+[[history]]
+name = "x"
+quantity = "block.displacement_x"
+block = "top"
+every = 1
+"""
+
+
+def run(tmp_path, text):
+    scene = tmp_path / "scene.toml"
+    scene.write_text(text)
+    out = tmp_path / "out"
+    done = subprocess.run([VDEC, "run", str(scene), "--out", str(out)], capture_output=True, text=True, timeout=120)
+    results = out / "results.json"
+    return done, json.loads(results.read_text()) if results.is_file() else None
+
+
+@REQ
+def test_phases_run_in_order_and_report_each(tmp_path):
+    done, results = run(tmp_path, BLOCKS + """
+[[phase]]
+name = "settle"
+stop = { ratio = 1e-5, cycles = 100000 }
+require_equilibrium = true
+adaptive_damping = true
+[[phase]]
+name = "pushed sideways"
+stop = { time = 0.2 }
+gravity = [2.0, -9.81]
+mass_damping = 0.0
+reset = ["displacements"]
+[[phase.joint_material]]
+name = "j"
+friction = 5.0
+""")
+    assert done.returncode == 0, done.stderr
+    first, second = results["phases"]
+    assert (first["name"], first["stop_reason"]) == ("settle", "ratio")
+    assert first["unbalanced_ratio"] <= 1e-5
+    assert (second["name"], second["stop_reason"]) == ("pushed sideways", "time")
+    assert second["time"] == pytest.approx(0.2, abs=results["run"]["dt"])
+    assert second["start_cycle"] == first["cycles"] and results["run"]["cycles"] == first["cycles"] + second["cycles"]
+    x = results["histories"]["x"]["value"]
+    # one series across both phases: the reset puts x back to zero at the second phase's start,
+    # and the weakened joint then lets the block slide in +x under the tilted gravity, from rest,
+    # at 2 - 9.81 tan 5 = 1.142 m/s2 (the normal force stays m g: gravity's y part is unchanged)
+    start = first["cycles"]
+    acceleration = 2.0 - 9.81 * math.tan(math.radians(5.0))
+    assert x[start] == 0.0
+    assert x[-1] == pytest.approx(0.5 * acceleration * second["time"] ** 2, rel=0.02)
+    assert results["energy"]["slip_dissipation"] > 0.0
+
+
+@REQ
+def test_a_phase_short_of_the_equilibrium_it_requires_stops_the_run(tmp_path):
+    done, results = run(tmp_path, BLOCKS + """
+[[phase]]
+name = "settle"
+stop = { ratio = 1e-9, cycles = 20 }
+require_equilibrium = true
+[[phase]]
+name = "never"
+stop = { cycles = 10 }
+""")
+    assert done.returncode == 9, done.stderr
+    assert "phase 'settle' has require_equilibrium = true but ended on its cycles limit" in done.stderr
+    assert [p["name"] for p in results["phases"]] == ["settle"]
+    assert results["phases"][0]["stop_reason"] == "error" and results["phases"][0]["cycles"] == 20
+
+
+@REQ
+def test_a_phase_short_of_its_ratio_without_the_requirement_warns_and_goes_on(tmp_path):
+    done, results = run(tmp_path, BLOCKS + """
+[[phase]]
+name = "settle"
+stop = { ratio = 1e-9, cycles = 20 }
+[[phase]]
+name = "next"
+stop = { cycles = 10 }
+""")
+    assert done.returncode == 0, done.stderr
+    assert "warning: phase 'settle' stopped on cycles before the unbalanced-force ratio fell to 1e-09" in done.stderr
+    assert [p["stop_reason"] for p in results["phases"]] == ["cycles", "cycles"]
+
+
+@REQ
+@pytest.mark.parametrize("extra, message", [
+    ("[stop]\ncycles = 5\n[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\n", "key 'stop': with [[phase]] tables each phase has its own stop"),
+    ("[[phase]]\nname = \"a\"\n", "key 'phase[0].stop': is required: each phase sets stop"),
+    ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\n[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\n", "key 'phase[1].name': phase 'a' is defined twice"),
+    ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\nrequire_equilibrium = true\n", "key 'phase[0].require_equilibrium': needs stop.ratio"),
+    ("[[phase]]\nname = \"a\"\nstop = { ratio = 1e-3 }\n", "key 'phase[0].stop.ratio': needs a limit as well"),
+    ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\nreset = [\"stresses\"]\n", "key 'phase[0].reset': unknown item 'stresses'"),
+    ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\nmass_damping = 1.0\nadaptive_damping = true\n", "key 'phase[0].mass_damping': give mass_damping or adaptive_damping, not both"),
+    ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\n[[phase.joint_material]]\nname = \"k\"\nfriction = 5.0\n", "key 'phase[0].joint_material[0].name': no joint material named 'k'"),
+    ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\n[[phase.joint_material]]\nname = \"j\"\n", "[phase[0].joint_material[0]]: changes nothing"),
+    ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\n[[phase.joint_material]]\nname = \"j\"\nkn = 5.0\n", "phase[0].joint_material[0].kn"),
+    ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\nfriction = 5.0\n", "phase[0].friction"),
+    ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\nmass_damping = 1e9\n", "phase 'a': mass_damping = 1e+09 1/s times the time step"),
+])
+def test_bad_phase_tables_are_scene_errors_naming_the_key(tmp_path, extra, message):
+    done, _ = run(tmp_path, BLOCKS + extra)
+    assert done.returncode == 3, done.stderr
+    assert message in done.stderr, done.stderr
+
+
+@REQ
+def test_resets_measure_displacements_from_the_phase_start_and_stop_the_block(tmp_path):
+    done, results = run(tmp_path, BLOCKS + """
+[[phase]]
+name = "slide"
+stop = { time = 0.1 }
+gravity = [2.0, -9.81]
+[[phase.joint_material]]
+name = "j"
+friction = 5.0
+[[phase]]
+name = "held"
+stop = { cycles = 20 }
+gravity = [0.0, -9.81]
+reset = ["displacements", "velocities"]
+[[phase.joint_material]]
+name = "j"
+friction = 30.0
+""")
+    assert done.returncode == 0, done.stderr
+    first = results["phases"][0]
+    x = results["histories"]["x"]["value"]
+    slid = x[first["cycles"]]  # the last sample of the first phase, before the reset
+    assert slid == pytest.approx(0.5 * (2.0 - 9.81 * math.tan(math.radians(5.0))) * first["time"] ** 2, rel=0.05)
+    # from rest at the reset, held by friction 30 degrees under upright gravity, it stays put
+    # but for the shear spring unloading the friction force it held while sliding:
+    # m g tan 5 / (ks L) = 5000 * 9.81 * 0.0875 / (1e10 * 2) = 2.1e-7 m
+    assert max(abs(v) for v in x[first["cycles"] + 1:]) < 5e-7
+    # ... and its velocity is that spring's vibration, at most w 2.1e-7 = 4.2e-4 m/s
+    # (w = sqrt(ks L / m) = 2000 rad/s), against 0.11 m/s had the velocities not been reset
+    assert abs(results["blocks"][1]["velocity"][0]) < 1e-3
