@@ -19,6 +19,7 @@
 #include "io/build_info.hpp"
 #include "io/results_writer.hpp"
 #include "io/scene_reader.hpp"
+#include "io/state_file.hpp"
 #include "io/vtk_writer.hpp"
 
 namespace {
@@ -28,7 +29,29 @@ struct RunOptions {
   std::vector<std::string> overrides;
   bool profile = false;
   int threads = 0;  // 0: chosen from the work
+  std::vector<std::string> save;  // phases after which the state is written
+  std::string restart;            // a state file to continue from
 };
+
+// The phase index (1-based) of each name given to --save; the names must be the scene's phases.
+std::vector<int> phasesToSave(const RunOptions& options, const vdec::Scene& scene) {
+  std::vector<int> indices;
+  for (const std::string& name : options.save) {
+    int found = 0;
+    for (std::size_t k = 0; k < scene.settings.phases.size(); ++k)
+      if (scene.settings.phases[k].name == name) found = static_cast<int>(k) + 1;
+    if (found == 0) {
+      std::string names;
+      for (const auto& p : scene.settings.phases) names += (names.empty() ? "'" : ", '") + p.name + "'";
+      throw vdec::Error(vdec::ExitCode::Usage,
+                        "--save " + name + ": " + scene.path +
+                            (names.empty() ? " has no [[phase]] tables; a state is saved after a phase"
+                                           : " has no phase of that name (its phases: " + names + ")"));
+    }
+    indices.push_back(found);
+  }
+  return indices;
+}
 
 // Idle OpenMP threads spin before they sleep (libgomp: 300 000 polls, milliseconds), which on a
 // busy machine takes the CPU from the thread doing the work: two threads ran 2 to 14 times
@@ -73,7 +96,37 @@ int runScene(const RunOptions& options) {
                                                      omp_get_max_threads());
   environment.waitPolicy = openMpWaitPolicy();
   omp_set_num_threads(environment.threads);
+  const std::vector<int> saveAfter = phasesToSave(options, scene);
   vdec::Cycle cycle(scene.model, scene.settings, scene.histories);
+  if (!options.restart.empty()) {
+    if (scene.settings.phases.empty())
+      throw vdec::RestartError(options.restart + ": " + scene.path +
+                               " has no [[phase]] tables; a restart continues a scene's phases");
+    const auto loadStart = std::chrono::steady_clock::now();
+    const int done = vdec::readState(options.restart, scene, scene.model, cycle);
+    std::fprintf(stderr, "vdec: continuing after phase '%s' from %s (%.1f MB read in %.3f s)\n",
+                 scene.settings.phases[done - 1].name.c_str(), options.restart.c_str(),
+                 static_cast<double>(std::filesystem::file_size(options.restart)) / 1e6,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count());
+    cycle.resumeAt(done);
+    environment.restartFile = options.restart;
+    environment.restartPhases = done;
+    for (const int k : saveAfter)
+      if (k <= done)
+        throw vdec::Error(vdec::ExitCode::Usage, "--save " + scene.settings.phases[k - 1].name + ": that phase ran before "
+                                                 "the state in " + options.restart + " was saved");
+  }
+  cycle.afterPhase = [&](const std::string& name, const vdec::RunReport&) {
+    for (const int k : saveAfter)
+      if (scene.settings.phases[k - 1].name == name) {
+        const std::string file = (std::filesystem::path(outDir) / ("after-phase-" + std::to_string(k) + ".vdecstate")).string();
+        const auto saveStart = std::chrono::steady_clock::now();
+        vdec::writeState(file, scene, scene.model, cycle, k);
+        std::fprintf(stderr, "vdec: state after phase '%s' written to %s (%.1f MB in %.3f s)\n", name.c_str(),
+                     file.c_str(), static_cast<double>(std::filesystem::file_size(file)) / 1e6,
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - saveStart).count());
+      }
+  };
   const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const vdec::RunReport report = cycle.run();
   vdec::writeResults(outDir, scene, report, setup, environment);
@@ -140,6 +193,10 @@ int main(int argc, char** argv) {
                   "OpenMP threads for the zone and gridpoint loops; 0 (the default): one for a small model, "
                   "else OMP_NUM_THREADS or every processor")
       ->check(CLI::Range(0, 1024));
+  run->add_option("--save", options.save,
+                  "write the state after these phases (comma-separated names) to DIR/after-phase-K.vdecstate")
+      ->delimiter(',');
+  run->add_option("--restart", options.restart, "continue the scene's phases from a state file written by --save");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -27,6 +27,12 @@ class ContactDetection {
   // Blocks to rescan at the next update whatever their motion.
   void requestRescan(const std::vector<int>& blocks) { requested_.insert(requested_.end(), blocks.begin(), blocks.end()); }
   int scans() const { return scans_; }
+  // What carries from one step to the next (core/state_archive.hpp); the rest are scratch buffers.
+  template <class A>
+  void visitState(A& a) {
+    a(motionSinceScan_), a(margin_), a(displacement_), a(moved_), a(requested_), a(scanCentroid_);
+    a(scanRotation_), a(scanGridpoint_), a(scans_);
+  }
 
  private:
   // All blocks (moved == nullptr), or those flagged in moved and the contacts they take part in.

@@ -17,6 +17,7 @@ enum class ExitCode : int {
   Output = 7,             // results could not be written
   Interrupted = 8,        // SIGINT or SIGTERM: stopped between two steps, results so far written
   NotInEquilibrium = 9,   // a phase with require_equilibrium ended on its cycle or time limit
+  Restart = 10,           // a state file that cannot be continued: unreadable, damaged, foreign, other scene
 };
 
 class Error : public std::runtime_error {
@@ -42,6 +43,9 @@ struct OverlapError : Error {
 };
 struct EquilibriumError : Error {
   explicit EquilibriumError(const std::string& m) : Error(ExitCode::NotInEquilibrium, m) {}
+};
+struct RestartError : Error {
+  explicit RestartError(const std::string& m) : Error(ExitCode::Restart, m) {}
 };
 struct OutputError : Error {
   explicit OutputError(const std::string& m) : Error(ExitCode::Output, m) {}

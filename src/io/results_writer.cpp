@@ -127,6 +127,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
   j["environment"] = environment(environmentOfRun);
   j["scene"] = {{"path", scene.path}, {"sha256", scene.sha256}, {"overrides", scene.overrides}, {"title", scene.title},
                 {"warnings", scene.warnings}};
+  if (!environmentOfRun.restartFile.empty())
+    j["scene"]["restart"] = {{"file", environmentOfRun.restartFile}, {"phases_done", environmentOfRun.restartPhases}};
   json profile = json::object();
   for (const StageTiming& s : report.profile) profile[s.name] = s.seconds;
   j["run"] = {{"cycles", report.cycles},

@@ -19,6 +19,8 @@ struct RunEnvironment {
   int threads = 1;        // OpenMP threads the run used
   int threadsOption = 0;  // --threads as given; 0: chosen from the work
   std::string waitPolicy; // how idle OpenMP threads wait (parallel.hpp)
+  std::string restartFile;  // the state file the run continued from (--restart), else empty
+  int restartPhases = 0;    // the phases done in it
 };
 
 // Writes dir/results.json under a temporary name renamed over it (io/atomic_file.hpp), creating

@@ -154,6 +154,26 @@ void addBlock(Model& m, const BlockInput& in) {
 
 }  // namespace
 
+// SHA-256 of the scene as parsed (overrides applied) with its first k phases, k = 0 .. n: a
+// restart may append phases, but what ran before the save must be what the scene says.
+static std::vector<std::string> phasePrefixHashes(const toml::table& root) {
+  const toml::array* phases = root["phase"].as_array();
+  const std::size_t n = phases ? phases->size() : 0;
+  std::vector<std::string> hashes;
+  for (std::size_t k = 0; k <= n; ++k) {
+    toml::table copy = root;
+    if (phases) {
+      toml::array kept;
+      for (std::size_t i = 0; i < k; ++i) kept.push_back(*phases->get(i));
+      copy.insert_or_assign("phase", std::move(kept));
+    }
+    std::ostringstream text;
+    text << toml::toml_formatter(copy);
+    hashes.push_back(sha256Hex(text.str()));
+  }
+  return hashes;
+}
+
 static StopCriteria readStop(TableReader& t) {
   StopCriteria s;
   if (t.has("cycles")) {
@@ -235,6 +255,7 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     throw SceneError(s.str());
   }
   for (const std::string& o : overrides) applyOverride(root, o);
+  scene.phasePrefixSha256 = phasePrefixHashes(root);
 
   TableReader top(root, "", path);
   Model& m = scene.model;

@@ -16,6 +16,8 @@ struct Scene {
   std::string path;
   std::string sha256;                  // of the file's bytes
   std::vector<std::string> overrides;  // --set key=value, applied after reading the file
+  // [k]: SHA-256 of the scene as parsed with only its first k [[phase]] tables (a restart's check)
+  std::vector<std::string> phasePrefixSha256;
   Model model;
   RunSettings settings;
   std::vector<HistorySpec> histories;

@@ -494,15 +494,18 @@ void Cycle::printProgress(bool final) const {
 RunReport Cycle::run() {
   const auto start = Clock::now();
   const bool progress = settings_.progress && isatty(STDERR_FILENO);
-  if (!historySpecs_.empty()) recordHistories(true);
+  const bool resumed = firstPhase_ > 0;
+  if (!historySpecs_.empty() && !resumed) recordHistories(true);
   RunReport report;
+  report.phases = donePhases_;
   const bool snapshots = settings_.snapshotEvery > 0 && settings_.snapshot;
   try {
-    if (snapshots) settings_.snapshot(model_);
+    if (snapshots && !resumed) settings_.snapshot(model_);
     if (settings_.phases.empty()) {
       stepUntil(settings_.stop, report.stopReason);
     } else {
-      for (const Phase& phase : settings_.phases) {
+      for (std::size_t k = firstPhase_; k < settings_.phases.size(); ++k) {
+        const Phase& phase = settings_.phases[k];
         const auto phaseStart = Clock::now();
         PhaseReport& done = report.phases.emplace_back();
         phaseStart_ = phaseStart;
@@ -522,6 +525,12 @@ RunReport Cycle::run() {
             << phase.stop.ratio << ": give the phase more cycles or time, more damping, or a larger ratio";
           done.stopReason = "error";
           throw EquilibriumError(s.str());
+        }
+        donePhases_ = report.phases;
+        if (afterPhase) {
+          // The report so far, for a state saved here to continue from.
+          report.histories = histories_;
+          afterPhase(phase.name, report);
         }
       }
     }

@@ -54,6 +54,12 @@ struct PhaseReport {
   double wallSeconds = 0.0;
 };
 
+template <class A>
+void visitState(A& a, PhaseReport& p) {
+  a(p.name), a(p.stopReason), a(p.startCycle), a(p.cycles), a(p.startTime), a(p.time), a(p.unbalancedRatio);
+  a(p.wallSeconds);
+}
+
 struct RunSettings {
   double frac = 0.1;          // FRAC of 1.3-28
   // The zone step as a fraction of 1.3-25's estimate of the critical one (the estimate already
@@ -111,6 +117,20 @@ class Cycle {
   // report.error and report.errorCode set, so that the histories up to it can still be written.
   RunReport run();
   double timeStep() const { return dt_; }
+  // Continue a saved run: the phases before `firstPhase` are done and the state (visitState)
+  // has been loaded; run() then starts at that phase, without the initial history sample.
+  void resumeAt(int firstPhase) { firstPhase_ = firstPhase; }
+  // After each phase, before the next begins (the state is then whole): the caller may save it.
+  std::function<void(const std::string& phase, const RunReport& soFar)> afterPhase;
+  // Everything of the run that carries from step to step, besides the model (core/state_archive.hpp).
+  template <class A>
+  void visitState(A& a) {
+    a(dt_), a(contactStepFraction_), a(stepStiffness_), a(largestStepDisplacement_), a(motionClock_);
+    a(meanContactForce_), a(largestUnbalanced_), a(step_), a(reversing_), a(alpha_), a(servoPower_), a(servoRate_);
+    a(staticSolveSeconds_), a(staticSolveResidual_), a(energy_), a(monitors_), a(histories_);
+    a(settings_.adaptiveDamping), a(settings_.massDamping), a(donePhases_);
+    detection_.visitState(a);
+  }
   double massDamping() const { return alpha_; }
 
  private:
@@ -167,6 +187,8 @@ class Cycle {
   double staticSolveResidual_ = -1.0;
   EnergyLedger energy_;
   std::chrono::steady_clock::time_point phaseStart_;
+  int firstPhase_ = 0;
+  std::vector<PhaseReport> donePhases_;  // restored with the state: the phases before firstPhase_
   Monitors monitors_;
 };
 

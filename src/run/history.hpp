@@ -70,6 +70,12 @@ struct HistorySeries {
   bool sampledAtCycleZero = false;  // the first sample is that of cycle 0 (block and gridpoint quantities)
 };
 
+template <class A>
+void visitState(A& a, HistorySeries& h) {
+  a(h.t), a(h.value), a(h.every), a(h.halvings), a(h.sampledAtCycleZero);
+}
+
+
 // Appends one sample, taken at a cycle that is a multiple of series.every; at `limit` samples
 // (even) halves the series as above and returns true.
 bool appendHistorySample(HistorySeries& series, double t, double value, std::size_t limit = kHistorySampleLimit);

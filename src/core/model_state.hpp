@@ -1,0 +1,54 @@
+#pragma once
+// The members of Model that a saved state carries (core/state_archive.hpp): all of them, the
+// set-up's as well as the run's, so that a restart cannot miss one. Loading overwrites a model
+// built from the same scene, whose set-up parts are then already equal.
+#include "core/model.hpp"
+#include "core/state_archive.hpp"
+
+namespace vdec {
+
+template <class A>
+void visitState(A& a, TimeFunction& f) {
+  a(f.kind), a(f.start), a(f.rate), a(f.frequency), a(f.phase), a(f.t), a(f.f), a(f.name);
+}
+template <class A>
+void visitState(A& a, BlockMaterial& m) {
+  a(m.name), a(m.density), a(m.bulk), a(m.shear), a(m.plastic), a(m.mohrCoulomb);
+}
+template <class A>
+void visitState(A& a, JointMaterial& j) {
+  a(j.name), a(j.law), a(j.kn), a(j.ks), a(j.tanFriction), a(j.cohesion), a(j.tension), a(j.tanDilation);
+  a(j.knCoefficient), a(j.knExponent), a(j.ksCoefficient), a(j.ksExponent), a(j.friction), a(j.initialFriction);
+  a(j.roughness);
+}
+template <class A>
+void visitState(A& a, Blocks& b) {
+  a(b.name), a(b.material), a(b.firstVertex), a(b.vertexCount), a(b.mass), a(b.inertia), a(b.driven);
+  a(b.boundingRadius), a(b.initialCentroid), a(b.centroid), a(b.rotation), a(b.velocity), a(b.angularVelocity);
+  a(b.force), a(b.moment), a(b.appliedForce), a(b.appliedMoment), a(b.deformable), a(b.velocityHistory);
+  a(b.inputVelocity), a(b.inputAngularVelocity);
+}
+template <class A>
+void visitState(A& a, Vertices& v) {
+  a(v.block), a(v.gridpoint), a(v.pointCorner), a(v.geometry), a(v.localPosition), a(v.localArcCentre);
+  a(v.localEdgeDirection), a(v.next), a(v.prev);
+}
+template <class A>
+void visitState(A& a, Gridpoints& g) {
+  a(g.block), a(g.initialPosition), a(g.position), a(g.velocity), a(g.tractionForce), a(g.mass), a(g.gravityMass);
+  a(g.stiffness), a(g.driven), a(g.contactForce);
+}
+template <class A>
+void visitState(A& a, Zones& z) {
+  a(z.gridpoint), a(z.block), a(z.material), a(z.sxx), a(z.syy), a(z.sxy), a(z.szz), a(z.plasticState);
+  a(z.nodalForce);
+}
+template <class A>
+void visitState(A& a, Model& m) {
+  a(m.blockMaterials), a(m.jointMaterials), a(m.blocks), a(m.vertices), a(m.gridpoints), a(m.zones);
+  a(m.gridpointZones.start), a(m.gridpointZones.slot), a(m.loadedEdges), a(m.drivenVelocities);
+  a(m.timeFunctions), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
+  a(m.defaultJoint), a(m.gravity), a(m.roundingLength), a(m.contactTolerance), a(m.time), a(m.cycle);
+}
+
+}  // namespace vdec
