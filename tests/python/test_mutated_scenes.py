@@ -33,12 +33,33 @@ _lock = threading.Lock()
 def _limits(mutant):
     """--set overrides that end the run soon without hiding the mutated key: a mutant of
     stop.cycles stops on a time shorter than one step, one that removes [stop] gets nothing
-    (it must then fail to read), every other one stops after CYCLES cycles."""
-    if mutant.path == ("stop",) and mutant.mutation in ("missing-key", "wrong-type"):
-        return []
-    if mutant.path[:2] == ("stop", "cycles"):
-        return ["stop.time=1e-12"]
-    return [f"stop.cycles={CYCLES}"]
+    (it must then fail to read), every other one stops after CYCLES cycles. A scene in phases
+    gets the same for each phase's stop."""
+    return limits(mutant.base.document, mutant.path, mutant.mutation)
+
+
+def limits(document, path=(), mutation=""):
+    if "phase" not in document:
+        if path == ("stop",) and mutation in ("missing-key", "wrong-type"):
+            return []
+        if path[:2] == ("stop", "cycles"):
+            return ["stop.time=1e-12"]
+        return [f"stop.cycles={CYCLES}"]
+    if path[:1] == ("phase",) and len(path) <= 2 and mutation in ("missing-key", "wrong-type"):
+        return []  # the phases themselves are the mutant: the scene must fail to read
+    sets = []
+    for k, phase in enumerate(document["phase"]):
+        replaced = mutation in ("missing-key", "wrong-type")
+        if replaced and path in (("phase", k), ("phase", k, "stop")):
+            continue  # the table itself is the mutant: an override would hide it
+        if path[:4] == ("phase", k, "stop", "cycles"):
+            sets.append(f"phase[{k}].stop.time=1e-12")
+        else:
+            sets.append(f"phase[{k}].stop.cycles={CYCLES}")
+        # a phase cut short of the equilibrium it requires would stop the run with exit code 9
+        if isinstance(phase, dict) and phase.get("require_equilibrium") and path[:3] != ("phase", k, "require_equilibrium"):
+            sets.append(f"phase[{k}].require_equilibrium=false")
+    return sets
 
 
 def _run(mutant, folder):
@@ -97,7 +118,7 @@ def test_every_base_scene_runs_clean_as_written_by_the_generator(tmp_path):
         scene = tmp_path / f"{index}.toml"
         scene.write_text(scene_mutations.toml_text(base.document))
         out = tmp_path / f"out{index}"
-        code, stderr = hostile_input.run_vdec(os.environ["VDEC_EXECUTABLE"], scene, out, [f"stop.cycles={CYCLES}"])
+        code, stderr = hostile_input.run_vdec(os.environ["VDEC_EXECUTABLE"], scene, out, limits(base.document))
         assert code == 0, f"{base.name}: exit code {code}: {stderr}"
         assert hostile_input.run_verdict(code, stderr, out, documented) == ""
 

@@ -19,7 +19,7 @@ REQ = pytest.mark.requirements("REQ-RUN-005")
 # A scene of each kind, its [stop] replaced by two phases: (problem, phases). The second phase
 # changes something, so that a restart that lost a phase's changes would show.
 PHASED = {
-    "rigid": ("RB-PHASE-WEAKENING", None),
+    "rigid": ("RUN-PHASE-WEAKENING", None),
     "mohr-coulomb": ("MC-TUNNEL", '[[phase]]\nname = "first"\nstop = { time = 0.04 }\n'
                                   '[[phase]]\nname = "second"\nstop = { time = 0.04 }\nmass_damping = 20.0\n'),
     "jointed-deformable": ("DB-JOINT-STACK", '[[phase]]\nname = "first"\nstop = { cycles = 300 }\n'
