@@ -133,6 +133,8 @@ struct LoadedEdge {
   int from = -1, to = -1;  // gridpoints, counter-clockwise along the block boundary
   double sxx = 0.0, syy = 0.0, sxy = 0.0;
   int history = -1;        // Model::timeFunctions entry scaling the stress, -1: constant
+  double timeOrigin = 0.0; // the history is f(t - timeOrigin): a phase's boundary starts with it
+  int source = -1;         // the Model::boundaryConditions entry it belongs to
 };
 
 // A gridpoint component driven at a velocity that varies in time: value times f(t).
@@ -141,6 +143,21 @@ struct DrivenVelocity {
   int component = 0;       // 0 x, 1 y
   double value = 0.0;
   int history = -1;
+  double timeOrigin = 0.0;
+  int source = -1;
+};
+
+// One [[boundary]] table (of the scene or of a phase) resolved to gridpoints and edges: what
+// boundary/boundary_conditions applies to a model and takes off it again.
+struct BoundaryCondition {
+  std::string name;                  // "" for an unnamed one, which cannot be freed
+  std::vector<int> gridpoints;       // driven: fixed or at a velocity
+  std::uint8_t fix = 0;              // DriveX / DriveY bits fixed (velocity zero)
+  std::uint8_t velocityBits = 0;     // DriveX / DriveY bits at a given velocity
+  Vec2 velocity;                     // of the velocityBits components (times the history, if any)
+  int history = -1;
+  std::vector<LoadedEdge> edges;     // loaded by a stress or pressure
+  bool active = true;
 };
 
 // What the contact geometry reads of a vertex at its present place, in one 64-byte record: a
@@ -232,6 +249,7 @@ struct Model {
   GridpointZones gridpointZones;
   std::vector<LoadedEdge> loadedEdges;
   std::vector<DrivenVelocity> drivenVelocities;  // only those with a time history
+  std::vector<BoundaryCondition> boundaryConditions;  // all ever applied, freed ones inactive
   std::vector<TimeFunction> timeFunctions;
   // The outline edges of deformable blocks (outer boundaries and holes), each directed with the
   // block on its left: gridpoints from -> to.

@@ -1,5 +1,7 @@
 #include "io/deformable_reader.hpp"
 
+#include "boundary/boundary_conditions.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <filesystem>
@@ -375,10 +377,11 @@ TimeFunction readHistory(TableReader& r, const std::string& scenePath, std::stri
   return f;
 }
 
-void readBoundaries(TableReader& top, Model& m, const std::string& path,
-                    const std::function<int(TableReader&, std::string_view, const std::string&)>& blockIndex) {
-  for (auto [table, prefix] : top.tables("boundary")) {
-    TableReader r(*table, prefix, path);
+BoundaryCondition readBoundary(TableReader& r, Model& m, const std::string& path,
+                               const std::function<int(TableReader&, std::string_view, const std::string&)>& blockIndex) {
+  {
+    BoundaryCondition condition;
+    condition.name = r.string("name", "");
     const int block = blockIndex(r, "block", r.string("block"));
     if (!m.blocks.deformable[block])
       r.fail("block", "block '" + m.blocks.name[block] + "' is rigid: [[boundary]] applies to deformable blocks; "
@@ -423,6 +426,7 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
       m.timeFunctions.push_back(readHistory(r, path, "history"));
       history = static_cast<int>(m.timeFunctions.size()) - 1;
     }
+    condition.history = history;
 
     if (fix || vx || vy) {
       std::uint8_t bits = 0;
@@ -435,19 +439,11 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
       const double ux = vx ? r.number("velocity_x") : 0.0, uy = vy ? r.number("velocity_y") : 0.0;
       if ((vx && (bits & DriveX)) || (vy && (bits & DriveY)))
         r.fail("fix", "a component is both fixed and given a velocity");
-      for (int i = 0; i < m.gridpoints.size(); ++i) {
-        if (!selected[i]) continue;
-        Gridpoints& g = m.gridpoints;
-        g.driven[i] |= bits | (vx ? DriveX : 0) | (vy ? DriveY : 0);
-        if (bits & DriveX) g.velocity[i].x = 0.0;
-        if (bits & DriveY) g.velocity[i].y = 0.0;
-        if (vx) g.velocity[i].x = ux;
-        if (vy) g.velocity[i].y = uy;
-        if (history >= 0) {
-          if (vx) m.drivenVelocities.push_back({i, 0, ux, history});
-          if (vy) m.drivenVelocities.push_back({i, 1, uy, history});
-        }
-      }
+      condition.fix = bits;
+      condition.velocityBits = static_cast<std::uint8_t>((vx ? DriveX : 0) | (vy ? DriveY : 0));
+      condition.velocity = {ux, uy};
+      for (int i = 0; i < m.gridpoints.size(); ++i)
+        if (selected[i]) condition.gridpoints.push_back(i);
     } else {
       std::array<double, 3> s{}, gx{}, gy{};
       StressTable stressTable;
@@ -485,7 +481,7 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
             e.syy = s[1] + gx[1] * mid.x + gy[1] * mid.y;
             e.sxy = s[2] + gx[2] * mid.x + gy[2] * mid.y;
           }
-          m.loadedEdges.push_back(e);
+          condition.edges.push_back(e);
           ++edges;
         }
       }
@@ -494,6 +490,19 @@ void readBoundaries(TableReader& top, Model& m, const std::string& path,
                     "': stress and pressure act on edges of the block's outline whose two ends are both selected");
     }
     r.finish();
+    return condition;
+  }
+}
+
+void readBoundaries(TableReader& top, Model& m, const std::string& path,
+                    const std::function<int(TableReader&, std::string_view, const std::string&)>& blockIndex) {
+  for (auto [table, prefix] : top.tables("boundary")) {
+    TableReader r(*table, prefix, path);
+    BoundaryCondition condition = readBoundary(r, m, path, blockIndex);
+    for (const BoundaryCondition& other : m.boundaryConditions)
+      if (!condition.name.empty() && other.name == condition.name)
+        r.fail("name", "boundary '" + condition.name + "' is defined twice");
+    addBoundaryCondition(m, std::move(condition), 0.0);
   }
 }
 

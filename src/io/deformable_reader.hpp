@@ -51,7 +51,11 @@ inline constexpr std::size_t kTableRows = 1000000;
 // A time history table under `key`, e.g. history = { kind = "sine", frequency = 10.0 }.
 TimeFunction readHistory(TableReader& r, const std::string& scenePath, std::string_view key);
 
-// [[boundary]] tables and [initial_stress]; `blockIndex` resolves a block name or fails on `r`.
+// One [[boundary]] table resolved to its block's gridpoints and edges (its history, if any,
+// appended to model.timeFunctions); `blockIndex` resolves a block name or fails on `r`.
+BoundaryCondition readBoundary(TableReader& r, Model& model, const std::string& path,
+                               const std::function<int(TableReader&, std::string_view, const std::string&)>& blockIndex);
+// [[boundary]] tables, applied to the model, and [initial_stress].
 void readBoundaries(TableReader& top, Model& model, const std::string& path,
                     const std::function<int(TableReader&, std::string_view, const std::string&)>& blockIndex);
 void readInitialStress(TableReader& top, Model& model);

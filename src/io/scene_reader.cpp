@@ -189,7 +189,8 @@ static StopCriteria readStop(TableReader& t) {
   return s;
 }
 
-static Phase readPhase(TableReader& r, const Model& m) {
+static Phase readPhase(TableReader& r, Model& m, std::set<std::string>& activeBoundaries,
+                       const std::function<int(TableReader&, std::string_view, const std::string&)>& blockIndex) {
   Phase phase;
   phase.name = r.string("name");
   auto stop = r.subtable("stop");
@@ -230,6 +231,20 @@ static Phase readPhase(TableReader& r, const Model& m) {
     if (!change.tanFriction && !change.cohesion && !change.tension)
       jr.failTable("changes nothing: give friction, cohesion and/or tension");
     c.joints.push_back(change);
+  }
+  for (const std::string& name : r.has("free") ? r.strings("free") : std::vector<std::string>{}) {
+    if (!activeBoundaries.erase(name))
+      r.fail("free", "no boundary named '" + name + "' is active when the phase starts (give [[boundary]] or an "
+                     "earlier phase's [[phase.boundary]] that name)");
+    c.freeBoundaries.push_back(name);
+  }
+  for (auto [table, prefix] : r.tables("boundary")) {
+    TableReader br(*table, prefix, r.file());
+    BoundaryCondition condition = readBoundary(br, m, r.file(), blockIndex);
+    if (!condition.name.empty() && !activeBoundaries.insert(condition.name).second)
+      br.fail("name", "boundary '" + condition.name + "' is active when the phase starts; free it first with this "
+                      "phase's free = [\"" + condition.name + "\"]");
+    c.boundaries.push_back(std::move(condition));
   }
   r.finish();
   return phase;
@@ -359,13 +374,6 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
   if (top.has("phase")) {
     if (top.has("stop"))
       top.fail("stop", "with [[phase]] tables each phase has its own stop; move [stop] into the phases and remove it");
-    for (auto [table, prefix] : top.tables("phase")) {
-      TableReader r(*table, prefix, path);
-      scene.settings.phases.push_back(readPhase(r, m));
-      for (std::size_t i = 0; i + 1 < scene.settings.phases.size(); ++i)
-        if (scene.settings.phases[i].name == scene.settings.phases.back().name)
-          r.fail("name", "phase '" + scene.settings.phases[i].name + "' is defined twice");
-    }
   } else {
     auto t = top.subtable("stop");
     if (!t) top.fail("stop", "is required: set [stop] cycles, time or ratio (or give [[phase]] tables, each with its stop)");
@@ -568,6 +576,18 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     r.fail(key, "no block named '" + name + "'");
   };
   readBoundaries(top, m, path, blockIndex);
+  // Phases after the boundaries: a phase's boundary conditions select the model's gridpoints,
+  // and may free only conditions active when the phase starts.
+  std::set<std::string> activeBoundaries;
+  for (const BoundaryCondition& b : m.boundaryConditions)
+    if (!b.name.empty()) activeBoundaries.insert(b.name);
+  for (auto [table, prefix] : top.tables("phase")) {
+    TableReader r(*table, prefix, path);
+    scene.settings.phases.push_back(readPhase(r, m, activeBoundaries, blockIndex));
+    for (std::size_t i = 0; i + 1 < scene.settings.phases.size(); ++i)
+      if (scene.settings.phases[i].name == scene.settings.phases.back().name)
+        r.fail("name", "phase '" + scene.settings.phases[i].name + "' is defined twice");
+  }
   readInitialStress(top, m);
   for (auto [table, prefix] : top.tables("joint_assignment")) {
     TableReader r(*table, prefix, path);

@@ -13,7 +13,7 @@ void applyEdgeTractions(Model& m) {
     // Outward normal times length of a counter-clockwise boundary edge: (dy, -dx).
     const Vec2 d = g.position[e.to] - g.position[e.from];
     const Vec2 nL{d.y, -d.x};
-    const double scale = e.history < 0 ? 1.0 : m.timeFunctions[e.history](m.time);
+    const double scale = e.history < 0 ? 1.0 : m.timeFunctions[e.history](m.time - e.timeOrigin);
     const Vec2 traction = scale * Vec2{e.sxx * nL.x + e.sxy * nL.y, e.sxy * nL.x + e.syy * nL.y};
     g.tractionForce[e.from] += 0.5 * traction;
     g.tractionForce[e.to] += 0.5 * traction;
@@ -23,7 +23,7 @@ void applyEdgeTractions(Model& m) {
 void applyDrivenVelocities(Model& m, double dt) {
   // The velocity of the half step about to be taken, v(t + dt/2).
   for (const DrivenVelocity& d : m.drivenVelocities) {
-    const double v = d.value * m.timeFunctions[d.history](m.time + 0.5 * dt);
+    const double v = d.value * m.timeFunctions[d.history](m.time - d.timeOrigin + 0.5 * dt);
     (d.component == 0 ? m.gridpoints.velocity[d.gridpoint].x : m.gridpoints.velocity[d.gridpoint].y) = v;
   }
 }

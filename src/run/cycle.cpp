@@ -13,6 +13,7 @@
 #include "core/interrupt.hpp"
 #include "motion/gridpoint_motion.hpp"
 #include "motion/rigid_motion.hpp"
+#include "boundary/boundary_conditions.hpp"
 #include "zone/cst.hpp"
 #include "zone/direct_solve.hpp"
 
@@ -177,7 +178,10 @@ void Cycle::checkDamping(const std::string& where) const {
 
 void Cycle::buildStages() {
   // Only the stages the scene needs: a single deformable block has no contacts, a scene of
-  // rigid blocks no zones. The step's force sums start from zero, in one place.
+  // rigid blocks no zones. The step's force sums start from zero, in one place. Built again
+  // when a phase changes what is needed; the profile's times carry over by name.
+  std::vector<Stage> before = std::move(stages_);
+  stages_.clear();
   stages_.push_back({"start-of-step", [this] { model_.clearStepForces(); }, 0.0, false});
   if (hasContacts_) {
     stages_.push_back({"contact-detection", [this] {
@@ -230,6 +234,9 @@ void Cycle::buildStages() {
   }
   stages_.push_back({"end-of-step", [this] { finishStep(); }, 0.0, false});
   if (!historySpecs_.empty()) stages_.push_back({"histories", [this] { recordHistories(false); }});
+  for (Stage& stage : stages_)
+    for (const Stage& old : before)
+      if (old.name == stage.name) stage.seconds = old.seconds;
 }
 
 void Cycle::finishStep() {
@@ -414,6 +421,11 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
     settings_.adaptiveDamping = false;
     alpha_ = *changes.massDamping;
   }
+  const bool loaded = !model_.loadedEdges.empty(), driven = !model_.drivenVelocities.empty();
+  for (const std::string& name : changes.freeBoundaries) freeBoundaryCondition(model_, name);
+  for (const BoundaryCondition& b : changes.boundaries) energy_.withdraw(addBoundaryCondition(model_, b, model_.time));
+  // A stage for tractions or driven velocities where there were none before, or none where they all went.
+  if (loaded != !model_.loadedEdges.empty() || driven != !model_.drivenVelocities.empty()) buildStages();
   Blocks& bl = model_.blocks;
   Gridpoints& g = model_.gridpoints;
   if (changes.resetVelocities) {

@@ -34,6 +34,8 @@ struct PhaseChanges {
   std::vector<JointStrengthChange> joints;
   std::optional<double> massDamping;     // switches adaptive damping off
   std::optional<bool> adaptiveDamping;
+  std::vector<std::string> freeBoundaries;       // names of active boundary conditions taken off
+  std::vector<BoundaryCondition> boundaries;      // then applied, their histories from the phase's start
   bool resetDisplacements = false;       // displacement histories and outputs measured from here
   bool resetVelocities = false;
 };

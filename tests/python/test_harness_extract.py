@@ -160,3 +160,19 @@ def test_crossing_time_is_the_first_upward_crossing():
     assert extract({"kind": "crossing_time", "history": "h", "level": 3.5}, RAMP, 0) == pytest.approx(0.25, rel=1e-12)
     with pytest.raises(ExtractError, match="never rises through 20"):
         extract({"kind": "crossing_time", "history": "h", "level": 20.0}, RAMP, 0)
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_phase_end_reads_the_last_sample_of_the_phase():
+    # value = 10 t + 1 sampled every 0.1 s; phase "a" ends at 0.25 + 0.2 = 0.45 s, whose last
+    # sample is t = 0.4 (value 5); phase "b" ends at 0.6 exactly, a sample (value 7).
+    results = dict(RAMP, phases=[{"name": "a", "start_time": 0.25, "time": 0.2},
+                                 {"name": "b", "start_time": 0.45, "time": 0.15}])
+    assert extract({"kind": "phase_end", "history": "h", "phase": "a"}, results, 0) == pytest.approx(5.0, rel=1e-12)
+    assert extract({"kind": "phase_end", "history": "h", "phase": "b", "scale": -1.0}, results, 0) == \
+        pytest.approx(-7.0, rel=1e-12)
+    with pytest.raises(ExtractError, match="no phase 'c'"):
+        extract({"kind": "phase_end", "history": "h", "phase": "c"}, results, 0)
+    early = dict(RAMP, phases=[{"name": "a", "start_time": -1.0, "time": 0.5}])
+    with pytest.raises(ExtractError, match="no sample before the end of phase 'a'"):
+        extract({"kind": "phase_end", "history": "h", "phase": "a"}, early, 0)

@@ -28,6 +28,9 @@ closure (positive closing) from a block's displacement (positive up); default 1.
                                                       level: the final value of the whole history)
     crossing_time  history, level                     the first time the history rises through level (linear
                                                       interpolation between samples): a wave's arrival
+    phase_end      history, phase [scale]             the last sample of the history at or before the end of the
+                                                      phase of that name (results["phases"]): a phased run's
+                                                      state after each phase
     run_meta       path                               a number at a dotted path in results["run"] or
                                                       results["energy"], e.g. "energy.largest_excess"
     exit_code      (none)                             the exit code of the run
@@ -225,6 +228,21 @@ def crossing_time(results, table):
     return float(crossings[0])
 
 
+def phase_end(results, table):
+    name, phase = table["history"], table["phase"]
+    found = [p for p in results.get("phases") or [] if p.get("name") == phase]
+    if not found:
+        raise ExtractError(f"the results have no phase '{phase}' (a scene without it, or a run stopped before it)")
+    end = found[0]["start_time"] + found[0]["time"]
+    t, value = read_history(results, name)
+    # Samples carry the time of the positions just reached; half a step of slack for round-off.
+    slack = 0.5 * float(results.get("run", {}).get("dt", 0.0))
+    inside = np.nonzero(t <= end + slack)[0]
+    if inside.size == 0:
+        raise ExtractError(f"history '{name}' has no sample before the end of phase '{phase}' (t = {end})")
+    return float(value[inside[-1]]) * float(table.get("scale", 1.0))
+
+
 def run_meta(results, table):
     node = results
     for part in table["path"].split("."):
@@ -257,6 +275,7 @@ KINDS = {
     "period": Kind(period, ("history",), ("window", "level"), False),
     "log_decrement": Kind(log_decrement, ("history",), ("window", "level"), False),
     "crossing_time": Kind(crossing_time, ("history", "level"), (), False),
+    "phase_end": Kind(phase_end, ("history", "phase"), ("scale",), False),
     "run_meta": Kind(run_meta, ("path",), (), False),
     "exit_code": Kind(None, (), (), False),
     "field": Kind(fields.field, ("of", "quantity"), fields.SELECTION_KEYS + ("abscissa",), True),

@@ -1,0 +1,52 @@
+#include "boundary/boundary_conditions.hpp"
+
+#include <algorithm>
+
+namespace vdec {
+
+double addBoundaryCondition(Model& m, BoundaryCondition condition, double timeOrigin) {
+  const int source = static_cast<int>(m.boundaryConditions.size());
+  Gridpoints& g = m.gridpoints;
+  double taken = 0.0;
+  for (const int i : condition.gridpoints) {
+    const Vec2 before = g.velocity[i];
+    g.driven[i] |= condition.fix | condition.velocityBits;
+    if (condition.fix & DriveX) g.velocity[i].x = 0.0;
+    if (condition.fix & DriveY) g.velocity[i].y = 0.0;
+    if (condition.velocityBits & DriveX) g.velocity[i].x = condition.velocity.x;
+    if (condition.velocityBits & DriveY) g.velocity[i].y = condition.velocity.y;
+    // Before the run the masses are not yet formed (and nothing moves).
+    const double mass = i < static_cast<int>(g.mass.size()) ? g.mass[i] : 0.0;
+    taken += 0.5 * mass * (dot(before, before) - dot(g.velocity[i], g.velocity[i]));
+    if (condition.history < 0) continue;
+    if (condition.velocityBits & DriveX)
+      m.drivenVelocities.push_back({i, 0, condition.velocity.x, condition.history, timeOrigin, source});
+    if (condition.velocityBits & DriveY)
+      m.drivenVelocities.push_back({i, 1, condition.velocity.y, condition.history, timeOrigin, source});
+  }
+  for (LoadedEdge e : condition.edges) {
+    e.timeOrigin = timeOrigin;
+    e.source = source;
+    m.loadedEdges.push_back(e);
+  }
+  m.boundaryConditions.push_back(std::move(condition));
+  return taken;
+}
+
+bool freeBoundaryCondition(Model& m, const std::string& name) {
+  const auto found = std::find_if(m.boundaryConditions.begin(), m.boundaryConditions.end(),
+                                  [&](const BoundaryCondition& b) { return b.active && !name.empty() && b.name == name; });
+  if (found == m.boundaryConditions.end()) return false;
+  found->active = false;
+  const int source = static_cast<int>(found - m.boundaryConditions.begin());
+  std::erase_if(m.loadedEdges, [source](const LoadedEdge& e) { return e.source == source; });
+  std::erase_if(m.drivenVelocities, [source](const DrivenVelocity& d) { return d.source == source; });
+  Gridpoints& g = m.gridpoints;
+  for (const int i : found->gridpoints) g.driven[i] = 0;
+  for (const BoundaryCondition& b : m.boundaryConditions)
+    if (b.active)
+      for (const int i : b.gridpoints) g.driven[i] |= b.fix | b.velocityBits;
+  return true;
+}
+
+}  // namespace vdec
