@@ -42,7 +42,7 @@ bool freeBoundaryCondition(Model& m, const std::string& name) {
   std::erase_if(m.loadedEdges, [source](const LoadedEdge& e) { return e.source == source; });
   std::erase_if(m.drivenVelocities, [source](const DrivenVelocity& d) { return d.source == source; });
   Gridpoints& g = m.gridpoints;
-  for (const int i : found->gridpoints) g.driven[i] = 0;
+  for (const int i : found->gridpoints) g.driven[i] = (g.driven[i] & Excavated) ? DriveX | DriveY | Excavated : 0;
   for (const BoundaryCondition& b : m.boundaryConditions)
     if (b.active)
       for (const int i : b.gridpoints) g.driven[i] |= b.fix | b.velocityBits;

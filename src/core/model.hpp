@@ -51,9 +51,10 @@ struct JointMaterial {
   double roughness = 0.0;        // R, m
 };
 
-// Degrees of freedom of a rigid block that are driven (velocity prescribed, zero when fixed)
-// rather than integrated from the forces.
-enum DrivenDof : std::uint8_t { DriveX = 1, DriveY = 2, DriveRotation = 4, DriveAll = 7 };
+// Degrees of freedom of a rigid block or gridpoint that are driven (velocity prescribed, zero when
+// fixed) rather than integrated from the forces. Excavated marks a gridpoint whose zones were all
+// excavated during the run: it is held at rest (DriveX | DriveY) and belongs to no zone.
+enum DrivenDof : std::uint8_t { DriveX = 1, DriveY = 2, DriveRotation = 4, DriveAll = 7, Excavated = 8 };
 
 // Rigid blocks, structure of arrays. Vertices of block b are firstVertex[b] ..
 // firstVertex[b] + vertexCount[b] - 1 in the vertex arrays, counter-clockwise.

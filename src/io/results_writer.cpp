@@ -157,6 +157,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                  {"damping_dissipation", report.energy.dampingDissipation},
                  {"largest_excess", report.energy.largestExcess}};
   if (!report.phases.empty()) {
+    j["energy"]["removed"] = report.energy.removed;
     json phases = json::array();
     for (const PhaseReport& p : report.phases)
       phases.push_back({{"name", p.name},

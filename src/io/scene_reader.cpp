@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -20,6 +21,7 @@
 #include "io/sha256.hpp"
 #include "io/deformable_reader.hpp"
 #include "io/table_reader.hpp"
+#include "zone/excavation.hpp"
 
 namespace vdec {
 
@@ -174,6 +176,25 @@ static std::vector<std::string> phasePrefixHashes(const toml::table& root) {
   return hashes;
 }
 
+// The region of an [[excavation]] or [[phase.excavation]]: circle = { centre, radius } or a
+// convex polygon.
+static ExcavationRegion readRegion(TableReader& r) {
+  ExcavationRegion region;
+  region.where = r.location();
+  if (r.has("circle") == r.has("polygon")) r.failTable("give either circle = { centre, radius } or polygon = [...]");
+  if (r.has("circle")) {
+    auto c = r.subtable("circle");
+    if (!c) r.fail("circle", "must be a table { centre = [x, y], radius = R }");
+    region.centre = c->vec2("centre");
+    region.radius = c->positive("radius");
+    c->finish();
+  } else {
+    region.polygon = r.polygon("polygon");
+    validateBlockPolygon(region.polygon, 0.0, r.location());
+  }
+  return region;
+}
+
 static StopCriteria readStop(TableReader& t) {
   StopCriteria s;
   if (t.has("cycles")) {
@@ -189,7 +210,9 @@ static StopCriteria readStop(TableReader& t) {
   return s;
 }
 
-static Phase readPhase(TableReader& r, Model& m, std::set<std::string>& activeBoundaries,
+// `geometry` is the model as the phase will find it (excavated by the phases before), on which
+// its boundaries select gridpoints and edges; `m` receives their time functions.
+static Phase readPhase(TableReader& r, Model& m, std::optional<Model>& geometry, std::set<std::string>& activeBoundaries,
                        const std::function<int(TableReader&, std::string_view, const std::string&)>& blockIndex) {
   Phase phase;
   phase.name = r.string("name");
@@ -238,9 +261,25 @@ static Phase readPhase(TableReader& r, Model& m, std::set<std::string>& activeBo
                      "earlier phase's [[phase.boundary]] that name)");
     c.freeBoundaries.push_back(name);
   }
+  for (auto [table, prefix] : r.tables("excavation")) {
+    TableReader er(*table, prefix, r.file());
+    ExcavationRegion region = readRegion(er);
+    for (int b = 0; b < m.blocks.size(); ++b)
+      if (!m.blocks.deformable[b] && region.contains(m.blocks.centroid[b]))
+        er.failTable("holds the centroid of rigid block '" + m.blocks.name[b] + "': a phase excavates zones of "
+                     "deformable blocks only; remove rigid blocks before the run with [[excavation]]");
+    if (!geometry) geometry = m;
+    if (excavateZones(*geometry, [&](Vec2 p) { return region.contains(p); }, region.where).removed == 0)
+      er.failTable("removes nothing: no zone centroid lies in it when the phase starts");
+    if (geometry->zones.size() == 0) er.failTable("removes every zone: the model would have none left");
+    er.finish();
+    c.excavations.push_back(std::move(region));
+  }
   for (auto [table, prefix] : r.tables("boundary")) {
     TableReader br(*table, prefix, r.file());
-    BoundaryCondition condition = readBoundary(br, m, r.file(), blockIndex);
+    Model& selected = geometry ? *geometry : m;
+    BoundaryCondition condition = readBoundary(br, selected, r.file(), blockIndex);
+    if (geometry) m.timeFunctions = geometry->timeFunctions;
     if (!condition.name.empty() && !activeBoundaries.insert(condition.name).second)
       br.fail("name", "boundary '" + condition.name + "' is active when the phase starts; free it first with this "
                       "phase's free = [\"" + condition.name + "\"]");
@@ -514,20 +553,8 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
   // deformable blocks whose centroid does (the outline then follows the zones left).
   for (auto [table, prefix] : top.tables("excavation")) {
     TableReader r(*table, prefix, path);
-    std::function<bool(Vec2)> inside;
-    if (r.has("circle") == r.has("polygon")) r.failTable("give either circle = { centre, radius } or polygon = [...]");
-    if (r.has("circle")) {
-      auto c = r.subtable("circle");
-      if (!c) r.fail("circle", "must be a table { centre = [x, y], radius = R }");
-      const Vec2 centre = c->vec2("centre");
-      const double radius = c->positive("radius");
-      c->finish();
-      inside = [centre, radius](Vec2 p) { return norm(p - centre) < radius; };
-    } else {
-      const Polygon region = r.polygon("polygon");
-      validateBlockPolygon(region, 0.0, r.location());
-      inside = [region](Vec2 p) { return containsPoint(region, p); };
-    }
+    const ExcavationRegion region = readRegion(r);
+    const auto inside = [&region](Vec2 p) { return region.contains(p); };
     std::size_t removed = 0;
     std::vector<BlockInput> kept;
     for (BlockInput& in : inputs) {
@@ -581,9 +608,10 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
   std::set<std::string> activeBoundaries;
   for (const BoundaryCondition& b : m.boundaryConditions)
     if (!b.name.empty()) activeBoundaries.insert(b.name);
+  std::optional<Model> excavated;  // a copy of the model, excavated as the phases will, once one does
   for (auto [table, prefix] : top.tables("phase")) {
     TableReader r(*table, prefix, path);
-    scene.settings.phases.push_back(readPhase(r, m, activeBoundaries, blockIndex));
+    scene.settings.phases.push_back(readPhase(r, m, excavated, activeBoundaries, blockIndex));
     for (std::size_t i = 0; i + 1 < scene.settings.phases.size(); ++i)
       if (scene.settings.phases[i].name == scene.settings.phases.back().name)
         r.fail("name", "phase '" + scene.settings.phases[i].name + "' is defined twice");

@@ -99,6 +99,7 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
       // 1.3-32 to 1.3-34: inertial masses chosen so that every gridpoint is at the same stable
       // step, the unit step where blocks do not need a smaller one; weights stay exact.
       const double step = std::isfinite(dtBlocks) ? dtBlocks : 1.0;
+      densityStep_ = step;
       for (int i = 0; i < model_.gridpoints.size(); ++i)
         model_.gridpoints.mass[i] = 0.25 * model_.gridpoints.stiffness[i] * step * step;
     }
@@ -421,6 +422,7 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
     settings_.adaptiveDamping = false;
     alpha_ = *changes.massDamping;
   }
+  for (const ExcavationRegion& region : changes.excavations) excavate(region);
   const bool loaded = !model_.loadedEdges.empty(), driven = !model_.drivenVelocities.empty();
   for (const std::string& name : changes.freeBoundaries) freeBoundaryCondition(model_, name);
   for (const BoundaryCondition& b : changes.boundaries) energy_.withdraw(addBoundaryCondition(model_, b, model_.time));
@@ -463,6 +465,30 @@ void Cycle::closePhase(PhaseReport& done, Clock::time_point started) const {
   done.time = model_.time - done.startTime;
   done.unbalancedRatio = monitors_.unbalancedRatio;
   done.wallSeconds = std::chrono::duration<double>(Clock::now() - started).count();
+}
+
+void Cycle::excavate(const ExcavationRegion& region) {
+  const ZoneExcavation done = excavateZones(model_, [&](Vec2 p) { return region.contains(p); }, region.where);
+  if (done.removed == 0) return;
+  // The removed zones' elastic energy and the motion of the gridpoints left without a zone leave
+  // the model without work.
+  energy_.withdraw(done.strainEnergy + done.kineticEnergy);
+  for (HistorySpec& h : historySpecs_) {
+    if (h.zone < 0) continue;
+    if (done.newIndex[h.zone] < 0)
+      throw SceneError(region.where + " excavates the zone of history '" + h.name +
+                       "': give the history a point in a zone that stays");
+    h.zone = done.newIndex[h.zone];
+  }
+  if (settings_.densityScaling) {
+    Gridpoints& g = model_.gridpoints;
+    for (int i = 0; i < g.size(); ++i)
+      if (!(g.driven[i] & Excavated)) g.mass[i] = 0.25 * g.stiffness[i] * densityStep_ * densityStep_;
+  } else if (model_.zones.size() > 0) {
+    // A gridpoint that lost zones may have lost more mass than stiffness: the step may only shrink.
+    dt_ = std::min(dt_, settings_.zoneFraction * zoneTimeStep(model_) /
+                            (settings_.localDamping > 0.0 ? std::sqrt(1.0 + settings_.localDamping) : 1.0));
+  }
 }
 
 void Cycle::stepUntil(const StopCriteria& stop, std::string& reason) {

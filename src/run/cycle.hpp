@@ -13,6 +13,7 @@
 #include "run/history.hpp"
 #include "core/model.hpp"
 #include "motion/motion_totals.hpp"
+#include "zone/excavation.hpp"
 
 namespace vdec {
 
@@ -34,6 +35,7 @@ struct PhaseChanges {
   std::vector<JointStrengthChange> joints;
   std::optional<double> massDamping;     // switches adaptive damping off
   std::optional<bool> adaptiveDamping;
+  std::vector<ExcavationRegion> excavations;     // zones removed first, in order
   std::vector<std::string> freeBoundaries;       // names of active boundary conditions taken off
   std::vector<BoundaryCondition> boundaries;      // then applied, their histories from the phase's start
   bool resetDisplacements = false;       // displacement histories and outputs measured from here
@@ -130,7 +132,7 @@ class Cycle {
     a(dt_), a(contactStepFraction_), a(stepStiffness_), a(largestStepDisplacement_), a(motionClock_);
     a(meanContactForce_), a(largestUnbalanced_), a(step_), a(reversing_), a(alpha_), a(servoPower_), a(servoRate_);
     a(staticSolveSeconds_), a(staticSolveResidual_), a(energy_), a(monitors_), a(histories_);
-    a(settings_.adaptiveDamping), a(settings_.massDamping), a(donePhases_);
+    a(settings_.adaptiveDamping), a(settings_.massDamping), a(donePhases_), a(densityStep_), a(historySpecs_);
     detection_.visitState(a);
   }
   double massDamping() const { return alpha_; }
@@ -157,6 +159,7 @@ class Cycle {
   void stepUntil(const StopCriteria& stop, std::string& reason);
   void beginPhase(const PhaseChanges& changes);
   void checkDamping(const std::string& where) const;
+  void excavate(const ExcavationRegion& region);
   void closePhase(PhaseReport& done, std::chrono::steady_clock::time_point started) const;
   void printProgress(bool final) const;
 
@@ -184,6 +187,7 @@ class Cycle {
     int pause = 0;  // steps since the motion last reversed
   } reversing_;
   double alpha_ = 0.0;                       // mass damping in use, 1/s
+  double densityStep_ = 0.0;                 // the step density scaling formed the masses for
   double servoPower_ = 0.0, servoRate_ = 0.0;
   double staticSolveSeconds_ = -1.0;
   double staticSolveResidual_ = -1.0;

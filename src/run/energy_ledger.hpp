@@ -16,6 +16,7 @@ struct EnergyReport {
   double slipDissipation = 0.0;    // by all contacts, existing and deleted
   double jointRelease = 0.0;       // elastic energy joints gave up without work (breakage, length)
   double plasticDissipation = 0.0; // by Mohr-Coulomb zones
+  double removed = 0.0;            // taken out without work between phases (resets, excavation)
   double dampingDissipation = 0.0; // by mass damping
   double largestExcess = 0.0;      // max over the run of (kinetic + strain - supplied) / largest supplied
 };
@@ -42,7 +43,10 @@ class EnergyLedger {
   }
   void supplyHalf(double work) { supplied_ += 0.5 * work; }
   // Energy taken out of the model without work (velocities reset between phases).
-  void withdraw(double energy) { supplied_ -= energy; }
+  void withdraw(double energy) {
+    supplied_ -= energy;
+    terms_.removed += energy;
+  }
   // kinetic + strain - supplied, recorded against the largest energy supplied so far, which it
   // also updates: the energy supplied can return to zero (a bouncing block back at its start),
   // where the discrete energies' O((w dt)^2) errors do not.

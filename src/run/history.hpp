@@ -71,6 +71,11 @@ struct HistorySeries {
 };
 
 template <class A>
+void visitState(A& a, HistorySpec& h) {
+  a(h.name), a(h.quantity), a(h.block), a(h.otherBlock), a(h.gridpoint), a(h.zone), a(h.every);
+}
+
+template <class A>
 void visitState(A& a, HistorySeries& h) {
   a(h.t), a(h.value), a(h.every), a(h.halvings), a(h.sampledAtCycleZero);
 }

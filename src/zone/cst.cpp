@@ -76,6 +76,7 @@ void prepareZones(Model& m) {
   // largest double overflows here, and must be named rather than reach the step as inf or NaN.
   for (int i = 0; i < count; ++i) {
     if (std::isfinite(g.gravityMass[i]) && g.gravityMass[i] > 0.0 && std::isfinite(g.stiffness[i])) continue;
+    if (g.driven[i] & Excavated) continue;  // no zone left: held at rest, massless
     const int material = m.blocks.material[g.block[i]];
     std::ostringstream s;
     s << "gridpoint at (" << g.position[i].x << ", " << g.position[i].y << ") of block '" << m.blocks.name[g.block[i]]

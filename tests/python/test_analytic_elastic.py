@@ -549,3 +549,23 @@ def test_s_wave_sine_velocity():
     # c_s typed to 10 digits: the delay is off by 1e-12 s, the sine by 2 pi 50 Hz x 1e-12 s x 0.01.
     assert v == pytest.approx([0.0, 0.01, 0.0], abs=1e-11)
 
+
+
+@pytest.mark.requirements("REQ-QA-003")
+def test_kirsch_excavation_displacement_is_kirsch_less_the_plate_before_the_hole():
+    E, nu = 10e9, 0.25
+    G = E / (2.0 * (1.0 + nu))
+    # hydrostatic: only the a^2 / r term, P a^2 / (2 G r), radial
+    ux, uy = el.kirsch_excavation_displacement(x=[2.0, 0.0], y=[0.0, 3.0], a=1.0, S_x=-5e3, S_y=-5e3, E=E, nu=nu)
+    assert ux[0] == pytest.approx(-5e3 / (2.0 * G * 2.0), rel=1e-12) and uy[0] == pytest.approx(0.0, abs=1e-20)
+    assert uy[1] == pytest.approx(-5e3 / (2.0 * G * 3.0), rel=1e-12)
+    # biaxial, anywhere outside the hole: Kirsch's displacement less the homogeneous plane-strain
+    # displacement of the far field, u = (eps_x x, eps_y y) (elastic.plane_strain_biaxial)
+    x, y = np.array([1.0, 1.3, 0.2, -2.0, 3.0]), np.array([0.0, 0.9, 1.5, 0.7, -4.0])
+    kx, ky = el.kirsch_cartesian_displacement(x=x, y=y, a=1.0, S_x=-10e3, S_y=-4e3, E=E, nu=nu)
+    exx, eyy, _ = el.plane_strain_biaxial(E=E, nu=nu, sigma_xx=-10e3, sigma_yy=-4e3)
+    hx, hy = el.kirsch_excavation_displacement(x=x, y=y, a=1.0, S_x=-10e3, S_y=-4e3, E=E, nu=nu)
+    assert np.allclose(hx, kx - exx * x, rtol=1e-12, atol=1e-18)
+    assert np.allclose(hy, ky - eyy * y, rtol=1e-12, atol=1e-18)
+    with pytest.raises(ValueError, match="inside the hole"):
+        el.kirsch_excavation_displacement(x=[0.5], y=[0.0], a=1.0, S_x=-1.0, S_y=0.0, E=E, nu=nu)

@@ -303,6 +303,34 @@ def kirsch_cartesian_displacement(*, x, y, a, S_x, S_y, E, nu):
     return res["ur"] * c - res["ut"] * s, res["ur"] * s + res["ut"] * c
 
 
+def kirsch_excavation_displacement(*, x, y, a, S_x, S_y, E, nu):
+    """(u_x, u_y) caused by excavating the hole from a plate already at equilibrium under the far
+    field (S_x, S_y): Kirsch's displacement less the plate's before the hole, the homogeneous
+    plane-strain field of the same stress (kirsch with a = 0, where every a^2 term vanishes).
+    In polar form, with P = (S_x + S_y)/2, Q = (S_x - S_y)/2, kappa = 3 - 4 nu:
+
+        u_r = P a^2 / (2 G r) + Q / (2 G) ((kappa + 1) a^2 / r - a^4 / r^3) cos 2 theta
+        u_t = -Q / (2 G) ((kappa - 1) a^2 / r + a^4 / r^3) sin 2 theta
+
+    which falls off as a^2 / r away from the hole (compression negative, so a compressive field
+    moves the wall inwards)."""
+    E, nu = _check_young_poisson(E, nu)
+    if not a > 0.0:
+        raise ValueError(f"a = {a}: the hole radius must be positive")
+    x, y = _arr(x), _arr(y)
+    r, theta = np.hypot(x, y), np.arctan2(y, x)
+    # points on the wall may sit inside it by round-off or a small strain (positions after a reset)
+    if np.any(r < a * (1.0 - 1e-5)):
+        raise ValueError(f"a point lies inside the hole (r < a = {a})")
+    G = E / (2.0 * (1.0 + nu))
+    kappa = 3.0 - 4.0 * nu
+    P, Q = 0.5 * (S_x + S_y), 0.5 * (S_x - S_y)
+    ur = P * a * a / (2.0 * G * r) + Q / (2.0 * G) * ((kappa + 1.0) * a * a / r - a ** 4 / r ** 3) * np.cos(2.0 * theta)
+    ut = -Q / (2.0 * G) * ((kappa - 1.0) * a * a / r + a ** 4 / r ** 3) * np.sin(2.0 * theta)
+    c, s = np.cos(theta), np.sin(theta)
+    return ur * c - ut * s, ur * s + ut * c
+
+
 # ---------------------------------------------------------------- waves in an elastic column
 
 
