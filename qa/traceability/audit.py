@@ -8,7 +8,9 @@ qualification audit judges the full suite's evidence in reports/ (scripts/qualif
 test-suite audit judges the base-level evidence ctest wrote under build/reports/. Both
 recompute the SHA-256 of every input the summary records (configuration control).
 
-Every inconsistency is a "gap"; all gaps are listed, none stops the audit early. Exit status:
+The component table at the top of requirements.toml says which component owns which source
+folders and requirement and problem id prefixes; requirements and problems are checked against
+it. Every inconsistency is a "gap"; all gaps are listed, none stops the audit early. Exit status:
 0 no gaps, 1 gaps, 2 usage or input error (requirements.toml unreadable, output not writable).
 Standard library only, so it runs wherever the QA harness runs. See README.md next to this file.
 """
@@ -40,7 +42,13 @@ MODES = {
 }
 REQ_ID = re.compile(r"^REQ-[A-Z]+-\d{3}$")
 REQUIREMENT_KEYS = {"id", "component", "text", "source", "docs", "code", "problems", "tests"}
-COMPONENT_KEYS = {"id", "title", "docs"}
+# The component table (README.md, "Components"): every component names the folders it owns, the
+# id prefixes of its requirements and verification problems, and its docs page. The optional keys
+# default to false or empty.
+COMPONENT_KEYS = {"id", "title", "docs", "source", "requirement_prefixes", "problem_prefixes"}
+COMPONENT_OPTIONAL_KEYS = {"reserved", "cross_cutting", "uses", "legacy_requirements"}
+REQUIREMENT_PREFIX = re.compile(r"^REQ-[A-Z]+$")
+PROBLEM_PREFIX = re.compile(r"^[A-Z]+-$")
 TOP_KEYS = {"component", "requirement"}
 
 # The ten subsections NUREG-0856 asks of each component-model description: the name shown in
@@ -108,6 +116,17 @@ class Audit:
         if not path.is_file():
             return None, f"{relpath} does not exist"
         return path, None
+
+    def repo_dir(self, relpath):
+        """None for an existing folder inside the repository, else the reason it is not one."""
+        if not relpath:
+            return "no path given"
+        path = self.root / relpath
+        if Path(relpath).is_absolute() or not path.resolve().is_relative_to(self.root.resolve()):
+            return f"{relpath} is outside the repository"
+        if not path.is_dir():
+            return f"{relpath} does not exist"
+        return None
 
     def text(self, path):
         # Several requirements point into the same files; read each once.
@@ -537,25 +556,199 @@ def check_tests(audit, tests, req_ids, requirements):
             audit.warn(f"test {tid} was skipped or not run ({', '.join(known) or 'no requirement'})")
 
 
-def check_components(audit, components, requirements):
-    """Each component's docs: the ten NUREG-0856 subsections, none empty. Returns per-component
-    rows for the report."""
+# What to write for a component key that is missing.
+COMPONENT_KEY_HINTS = {
+    "title": "what the component models",
+    "docs": "its page, docs/models/NAME.md for a component model",
+    "source": 'the folders it owns, e.g. ["src/contact"]',
+    "requirement_prefixes": 'the REQ-AREA its requirement ids start with, e.g. ["REQ-CONTACT"]',
+    "problem_prefixes": 'the prefix of its verification problems\' ids, e.g. ["RB-"], or [] when it has none',
+}
+
+
+def unreserve(cid):
+    return (f"un-reserve component {cid} (delete reserved = true) and complete its entry: source folders "
+            "that exist and a docs page with the ten NUREG-0856 subsections")
+
+
+def requirement_area(rid):
+    """'REQ-CONTACT' of 'REQ-CONTACT-006'; None for an id not of the form REQ-AREA-NNN."""
+    return rid.rsplit("-", 1)[0] if isinstance(rid, str) and REQ_ID.match(rid) else None
+
+
+def bool_field(audit, subject, record, key):
+    value = record.get(key, False)
+    if not isinstance(value, bool):
+        audit.gap(subject, f"'{key}' must be true or false")
+        return False
+    return value
+
+
+class ComponentTable:
+    """The [[component]] entries as read: which component owns which id prefix and folder."""
+
+    def __init__(self):
+        self.entries = {}               # component id -> its keys, defaults filled in
+        self.requirement_prefix = {}    # "REQ-AREA" -> component id
+        self.problem_prefix = {}        # "AREA-" -> component id
+        self.legacy = {}                # requirement id -> the component whose legacy_requirements list it
+
+    def owner_of_requirement(self, rid):
+        return self.legacy.get(rid) or self.requirement_prefix.get(requirement_area(rid))
+
+    def owner_of_problem(self, pid):
+        """(component id, prefix) for the problem prefix pid starts with, else (None, None). A
+        prefix is capitals and one hyphen, so only the id's first word can match."""
+        prefix = pid.split("-", 1)[0] + "-"
+        owner = self.problem_prefix.get(prefix)
+        return (owner, prefix) if owner else (None, None)
+
+
+def read_component_table(audit, components, requirements):
+    """Reads and checks the component entries: keys, prefix formats, one owner per prefix,
+    'uses' naming components, legacy_requirements naming existing requirements of another
+    component's prefix."""
+    table = ComponentTable()
+    req_ids = {r.get("id") for r in requirements if isinstance(r.get("id"), str)}
+    for cid, c in components.items():
+        subject = f"component {cid}"
+        for key in sorted(set(c) - COMPONENT_KEYS - COMPONENT_OPTIONAL_KEYS):
+            audit.gap(subject, f"unknown key '{key}'")
+        for key in sorted(COMPONENT_KEYS - set(c)):
+            audit.gap(subject, f"no '{key}': add it, giving {COMPONENT_KEY_HINTS[key]}")
+        entry = {key: list_field(audit, subject, c, key)
+                 for key in ("source", "requirement_prefixes", "problem_prefixes", "uses", "legacy_requirements")}
+        entry["reserved"] = bool_field(audit, subject, c, "reserved")
+        entry["cross_cutting"] = bool_field(audit, subject, c, "cross_cutting")
+        table.entries[cid] = entry
+        for key in ("source", "requirement_prefixes"):
+            if key in c and not entry[key]:
+                audit.gap(subject, f"'{key}' is empty: give {COMPONENT_KEY_HINTS[key]}")
+        for key, pattern, owners, example in (
+                ("requirement_prefixes", REQUIREMENT_PREFIX, table.requirement_prefix, "REQ-FLOW"),
+                ("problem_prefixes", PROBLEM_PREFIX, table.problem_prefix, "FLOW-")):
+            kind = key.split("_")[0]
+            for prefix in entry[key]:
+                if not pattern.match(prefix):
+                    audit.gap(subject, f"{kind} prefix {prefix!r} is not of the form {example!r} (capital letters)")
+                elif prefix in owners:
+                    audit.gap(subject, f"{kind} prefix {prefix} is also component {owners[prefix]}'s: a prefix "
+                              "belongs to one component; give this one its own")
+                else:
+                    owners[prefix] = cid
+    for cid, entry in table.entries.items():
+        subject = f"component {cid}"
+        for other in entry["uses"]:
+            if other == cid or other not in components:
+                audit.gap(subject, f"'uses' names {other!r}, which is not another component")
+        for rid in entry["legacy_requirements"]:
+            area = requirement_area(rid)
+            if rid not in req_ids:
+                audit.gap(subject, f"legacy_requirements names {rid}, which does not exist")
+            elif rid in table.legacy:
+                audit.gap(subject, f"legacy_requirements names {rid}, which component {table.legacy[rid]} lists too")
+            elif area in entry["requirement_prefixes"]:
+                audit.gap(subject, f"legacy_requirements names {rid}, whose prefix {area} is the component's own: "
+                          "remove it from legacy_requirements")
+            else:
+                table.legacy[rid] = cid
+    return table
+
+
+def check_requirement_components(audit, requirements, table):
+    """Each requirement sits in the component its id belongs to by the table, one that is not
+    reserved. Its code lying outside that component's source folders is only a warning: some
+    requirements rightly span components (a model and the run stage that calls it)."""
+    for n, r in enumerate(requirements):
+        rid = r.get("id")
+        subject = rid if isinstance(rid, str) and rid else f"requirement #{n + 1}"
+        component = r.get("component", "")
+        area = requirement_area(rid)
+        if not isinstance(component, str) or (component and component not in table.entries):
+            continue        # a gap already says the component is not a string or unknown
+        owner = table.owner_of_requirement(rid)
+        if area is None:
+            if not component:
+                audit.gap(subject, "no component: set component to the id of the component it belongs to", [subject])
+        elif owner is None:
+            audit.gap(subject, f"its id prefix {area} is no component's: add '{area}' to the requirement_prefixes "
+                      f"of the component it belongs to{'' if component else ', and set component to that id'}",
+                      [subject])
+        elif table.entries[owner]["reserved"]:
+            then = "" if component == owner else f'; then set component = "{owner}"'
+            audit.gap(subject, f"its id prefix {area} is reserved: {unreserve(owner)}{then}", [subject])
+        elif component != owner:
+            why = f"component {owner} lists it in legacy_requirements" if rid in table.legacy else \
+                f"its id prefix {area} is component {owner}'s"
+            now = f"it is component {component}'s" if component else "it names no component"
+            audit.gap(subject, f"{why}, but {now}: set component = \"{owner}\"", [subject])
+        if not component or table.entries[component]["reserved"]:
+            continue
+        folders = table.entries[component]["source"]
+        code = r.get("code") if isinstance(r.get("code"), list) else []
+        files = dict.fromkeys(loc.partition(":")[0] for loc in code if isinstance(loc, str))
+        for file in files:
+            if file and folders and not any(file.startswith(f.rstrip("/") + "/") for f in folders):
+                audit.warn(f"{subject}: code {file} lies outside the source folders of component {component} "
+                           f"({', '.join(folders)})")
+
+
+def check_problem_components(audit, problems, requirements, table):
+    """A problem's id starts with the problem prefix of a component that is not reserved, and
+    the requirements it names are that component's, of a component it uses, or cross-cutting."""
+    component_of = {r.get("id"): r.get("component") for r in requirements if isinstance(r.get("id"), str)}
+    for pid, p in problems.items():
+        subject = f"problem {pid}"
+        owner, prefix = table.owner_of_problem(pid)
+        if owner is None:
+            audit.gap(subject, "its id starts with no component's problem prefix "
+                      f"({', '.join(sorted(table.problem_prefix)) or 'none'}): name it with the prefix of the "
+                      "component it verifies, or add its prefix to that component's problem_prefixes")
+            continue
+        entry = table.entries[owner]
+        if entry["reserved"]:
+            audit.gap(subject, f"its id prefix {prefix} is reserved: {unreserve(owner)}")
+            continue
+        for q in p["requirements"]:
+            qc = component_of.get(q)
+            if not isinstance(qc, str) or qc not in table.entries:
+                continue    # an unknown requirement or component is a gap already
+            if qc != owner and qc not in entry["uses"] and not table.entries[qc]["cross_cutting"]:
+                audit.gap(subject, f"names {q} of component {qc}, but its prefix {prefix} is component {owner}'s: "
+                          f"add \"{qc}\" to {owner}'s uses if {owner}'s problems run on {qc}'s model, "
+                          f"or drop {q} from the problem's requirements", [q])
+
+
+def check_components(audit, components, requirements, table):
+    """Each component that is not reserved: a requirement names it, its source folders exist,
+    its docs page exists and, for a component model (not cross-cutting), has the ten NUREG-0856
+    subsections, none empty. Returns per-component rows for the report."""
     rows = []
     for cid, c in components.items():
         subject = f"component {cid}"
+        entry = table.entries[cid]
         row = {"id": cid, "title": c.get("title", ""), "docs": c.get("docs", ""), "subsections": [],
+               "source": entry["source"], "prefixes": entry["requirement_prefixes"] + entry["problem_prefixes"],
+               "kind": "reserved" if entry["reserved"] else "cross-cutting" if entry["cross_cutting"] else "model",
+               "uses": entry["uses"], "legacy": entry["legacy_requirements"],
                "requirements": [r.get("id") for r in requirements if r.get("component") == cid]}
         rows.append(row)
-        for key in sorted(set(c) - COMPONENT_KEYS):
-            audit.gap(subject, f"unknown key '{key}'")
+        if entry["reserved"]:
+            continue        # its docs and folders come when it is un-reserved; requirements naming it are gaps
         if not row["requirements"]:
             audit.gap(subject, "no requirement names this component")
+        for folder in entry["source"]:
+            why = audit.repo_dir(folder)
+            if why:
+                audit.gap(subject, f"source folder {why}: create it or correct 'source'")
         docs = c.get("docs", "")
         path, why = audit.repo_file(docs if isinstance(docs, str) else "")
         if path is None:
             audit.gap(subject, f"docs file {why}")
             row["subsections"] = [(name, "no docs") for name, _ in SUBSECTIONS]
             continue
+        if entry["cross_cutting"]:
+            continue        # not a component model: its page is not held to the ten subsections
         sections = markdown_sections(audit.text(path))
         for name, accepted in SUBSECTIONS:
             found = [s for s in sections if subsection_key(s["title"]) in accepted]
@@ -659,13 +852,20 @@ def write_html(path, audit, ctx):
     gaps = "".join(f"<li><b>{e(g['subject'])}</b>: {e(g['text'])}</li>" for g in audit.gaps) or "<li>none</li>"
     warnings = "".join(f"<li>{e(w)}</li>" for w in audit.warnings) or "<li>none</li>"
     comps = []
+    not_checked = {"reserved": "reserved: not checked until un-reserved",
+                   "cross-cutting": "cross-cutting: not a component model, not checked"}
     for c in ctx["components"]:
         checks = "".join(f"<li>{e(name)}: <span class='{'pass' if s == 'present' else 'gap'}'>{e(s)}</span></li>"
-                         for name, s in c["subsections"])
+                         for name, s in c["subsections"]) or f"<li>{e(not_checked.get(c['kind'], ''))}</li>"
+        reqs = e(', '.join(str(q) for q in c['requirements'])) or \
+            ("none" if c["kind"] == "reserved" else status_span('missing'))
         comps.append(
-            f"<tr><td><b>{e(c['id'])}</b><br>{e(as_text(c['title']))}</td><td>{docs_link(c['docs'])}</td>"
-            f"<td>{e(', '.join(str(q) for q in c['requirements'])) or status_span('missing')}</td>"
-            f"<td><ul class='ev'>{checks}</ul></td></tr>")
+            f"<tr><td><b>{e(c['id'])}</b><br>{e(as_text(c['title']))}<br>({e(c['kind'])})"
+            f"{'<br>uses ' + e(', '.join(c['uses'])) if c['uses'] else ''}</td>"
+            f"<td>{'<br>'.join(f'<code>{e(f)}</code>' for f in c['source'])}</td>"
+            f"<td>{'<br>'.join(f'<code>{e(x)}</code>' for x in c['prefixes'])}"
+            f"{'<br>legacy ' + e(', '.join(c['legacy'])) if c['legacy'] else ''}</td><td>{docs_link(c['docs'])}</td>"
+            f"<td>{reqs}</td><td><ul class='ev'>{checks}</ul></td></tr>")
     s = ctx["summary_info"]
     verdict = "PASS" if not audit.gaps else f"FAIL ({len(audit.gaps)} gaps)"
     page = f"""<!DOCTYPE html>
@@ -694,8 +894,10 @@ listed problem or test passed and no gap is held against it.</p>
 </table>
 <h2>Gaps</h2><ul>{gaps}</ul>
 <h2>Components</h2>
-<p>Each component model's docs must have the ten NUREG-0856 subsections, none empty.</p>
-<table><tr><th>component</th><th>docs</th><th>requirements</th><th>subsections</th></tr>
+<p>Each component model's docs must have the ten NUREG-0856 subsections, none empty. A requirement
+belongs to the component that owns its id prefix; a problem to the component that owns its id prefix.</p>
+<table><tr><th>component</th><th>source folders</th><th>requirement and problem prefixes</th><th>docs</th>
+<th>requirements</th><th>subsections</th></tr>
 {''.join(comps)}
 </table>
 </body></html>
@@ -862,7 +1064,10 @@ def main(argv=None):
     check_requirements(audit, requirements, components, problems, statuses, tests)
     check_problems(audit, problems, statuses, req_ids, requirements, defaults["level"])
     check_tests(audit, tests, req_ids, requirements)
-    component_rows = check_components(audit, components, requirements)
+    table = read_component_table(audit, components, requirements)
+    check_requirement_components(audit, requirements, table)
+    check_problem_components(audit, problems, requirements, table)
+    component_rows = check_components(audit, components, requirements, table)
     head = git_head(root)
     check_configuration(audit, args.mode, head, summary_info, problems)
 

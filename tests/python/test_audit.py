@@ -27,6 +27,7 @@ PROBLEM = "verification/problems/WID-SWING/problem.toml"
 
 pytestmark = pytest.mark.requirements("REQ-QA-004")
 CONFIGURATION_CONTROL = pytest.mark.requirements("REQ-CM-001")
+COMPONENT_TABLE = pytest.mark.requirements("REQ-QA-009")
 
 
 def as_test_suite(root):
@@ -165,11 +166,16 @@ REQUIREMENT_GAPS = {
 }
 
 
+def assert_edit_gives_gap(repo, capsys, old, new, gap):
+    """Edit the requirements file and expect the audit to fail with the gap."""
+    edit(repo, REQS, old, new)
+    out, _ = gaps_of(repo, capsys)
+    assert gap in out
+
+
 @pytest.mark.parametrize("old,new,gap", REQUIREMENT_GAPS.values(), ids=REQUIREMENT_GAPS.keys())
 def test_requirement_gap_is_detected(repo, capsys, old, new, gap):
-    edit(repo, REQS, old, new)
-    out, page = gaps_of(repo, capsys)
-    assert gap in out
+    assert_edit_gives_gap(repo, capsys, old, new, gap)
 
 
 def test_problem_that_does_not_list_the_requirement_back(repo, capsys):
@@ -318,9 +324,216 @@ def test_component_docs_file_missing(repo, capsys):
 
 def test_component_with_no_requirement(repo, capsys):
     edit(repo, REQS, '[[requirement]]', '[[component]]\nid = "spare"\ntitle = "Spare"\n'
-         'docs = "docs/models/widget.md"\n\n[[requirement]]')
+         'docs = "docs/models/widget.md"\nsource = ["src"]\nrequirement_prefixes = ["REQ-SPARE"]\n'
+         'problem_prefixes = []\n\n[[requirement]]')
     out, _ = gaps_of(repo, capsys)
     assert "component spare: no requirement names this component" in out
+
+
+# ------------------------------------------------------------ the component table
+# The fixture's table: widget (a component model: source src, REQ-WIDGET, WID-), qa
+# (cross-cutting: REQ-QA, no problem prefix, docs/qa.md without the ten subsections) and flow
+# (reserved: REQ-FLOW, FLOW-, its folder and docs page do not exist).
+
+WIDGET_TABLE = 'docs = "docs/models/widget.md"\nsource = ["src"]\nrequirement_prefixes = ["REQ-WIDGET"]\nproblem_prefixes = ["WID-"]\n'
+QA_TABLE = 'requirement_prefixes = ["REQ-QA"]\nproblem_prefixes = []\ncross_cutting = true\n'
+FLOW_TABLE = 'problem_prefixes = ["FLOW-"]\nreserved = true\n'
+
+
+def add_problem(root, pid, requirements):
+    folder = root / "verification/problems" / pid
+    folder.mkdir()
+    (folder / "problem.toml").write_text(f'id = "{pid}"\nrequirements = {json.dumps(requirements)}\n')
+
+
+def add_requirement(root, rid, component):
+    path = root / REQS
+    path.write_text(path.read_text() + f'\n[[requirement]]\nid = "{rid}"\ncomponent = "{component}"\n'
+                    'text = "Joint apertures follow the cubic law."\nsource = "NUREG/CR-5429 1.4.2"\n'
+                    'docs = "docs/models/widget.md#law-of-swing"\ncode = ["src/widget.cpp:swingWidget"]\n'
+                    'problems = []\ntests = ["gtest:Widget.TimeStep"]\n')
+
+
+@COMPONENT_TABLE
+def test_the_clean_table_has_no_gap_and_no_warning(repo, capsys):
+    code, out = run(repo, capsys)
+    assert code == 0, out
+    assert "warning" not in out
+    page = (repo / "reports/traceability/rtm.html").read_text()
+    # The reserved component is listed, with its prefixes, and its missing page and folder are no gap.
+    assert "<b>flow</b>" in page and "<code>REQ-FLOW</code>" in page and "reserved: not checked" in page
+    assert "cross-cutting: not a component model" in page
+
+
+@COMPONENT_TABLE
+@pytest.mark.parametrize("line", ['title = "Widget model"\n', 'docs = "docs/models/widget.md"\n', 'source = ["src"]\n',
+                                  'requirement_prefixes = ["REQ-WIDGET"]\n', 'problem_prefixes = ["WID-"]\n'],
+                         ids=lambda line: line.split(" =")[0])
+def test_component_lacking_a_key(repo, capsys, line):
+    edit(repo, REQS, line, "")          # the first occurrence is the widget component's
+    out, _ = gaps_of(repo, capsys)
+    key = line.split(" =")[0]
+    assert f"component widget: no '{key}': add it, giving " in out
+
+
+# Edits of the fixture's requirements.toml, each with the gap it must give.
+COMPONENT_TABLE_GAPS = {
+    "source not a list": ('source = ["src"]', 'source = "src"', "component widget: 'source' must be a list of strings"),
+    "source empty": ('source = ["src"]', "source = []", "component widget: 'source' is empty: give the folders it owns"),
+    "no requirement prefix": ('requirement_prefixes = ["REQ-WIDGET"]', "requirement_prefixes = []",
+                              "component widget: 'requirement_prefixes' is empty: give the REQ-AREA"),
+    "cross_cutting not a boolean": ("cross_cutting = true", 'cross_cutting = "yes"',
+                                    "component qa: 'cross_cutting' must be true or false"),
+    "reserved not a boolean": ("reserved = true", "reserved = 1", "component flow: 'reserved' must be true or false"),
+    "requirement prefix in lower case": ('["REQ-WIDGET"]', '["REQ-WIDGET", "REQ-Gizmo"]',
+                                         "component widget: requirement prefix 'REQ-Gizmo' is not of the form "
+                                         "'REQ-FLOW'"),
+    "requirement prefix ending in a hyphen": ('["REQ-WIDGET"]', '["REQ-WIDGET", "REQ-GIZMO-"]',
+                                              "component widget: requirement prefix 'REQ-GIZMO-' is not of the form"),
+    "problem prefix without hyphen": ('["WID-"]', '["WID-", "GIZ"]',
+                                      "component widget: problem prefix 'GIZ' is not of the form 'FLOW-'"),
+    "problem prefix of two words": ('["WID-"]', '["WID-", "GIZ-SPIN-"]',
+                                    "component widget: problem prefix 'GIZ-SPIN-' is not of the form 'FLOW-'"),
+    "requirement prefix of two components": ('requirement_prefixes = ["REQ-QA"]',
+                                             'requirement_prefixes = ["REQ-QA", "REQ-WIDGET"]',
+                                             "component qa: requirement prefix REQ-WIDGET is also component widget's"),
+    "problem prefix of two components": ('problem_prefixes = ["FLOW-"]', 'problem_prefixes = ["FLOW-", "WID-"]',
+                                         "component flow: problem prefix WID- is also component widget's"),
+    "requirement in another prefix's component": (
+        'id = "REQ-QA-001"\ncomponent = "qa"', 'id = "REQ-QA-001"\ncomponent = "widget"',
+        "REQ-QA-001: its id prefix REQ-QA is component qa's, but it is component widget's: set component = \"qa\""),
+    "requirement with no component": (
+        'id = "REQ-QA-001"\ncomponent = "qa"\n', 'id = "REQ-QA-001"\n',
+        "REQ-QA-001: its id prefix REQ-QA is component qa's, but it names no component: set component = \"qa\""),
+    "requirement with a bad id and no component": (
+        'id = "REQ-QA-001"\ncomponent = "qa"\n', 'id = "REQ-QA-1"\n',
+        "REQ-QA-1: no component: set component to the id of the component it belongs to"),
+    "requirement prefix no component's": (
+        'requirement_prefixes = ["REQ-QA"]', 'requirement_prefixes = ["REQ-CM"]',
+        "REQ-QA-001: its id prefix REQ-QA is no component's: add 'REQ-QA' to the requirement_prefixes of the "
+        "component it belongs to"),
+    "source folder missing": ('source = ["src"]', 'source = ["src", "src/gizmo"]',
+                              "component widget: source folder src/gizmo does not exist"),
+    "uses names no component": (WIDGET_TABLE, WIDGET_TABLE + 'uses = ["gizmo"]\n',
+                                "component widget: 'uses' names 'gizmo', which is not another component"),
+    "uses names itself": (WIDGET_TABLE, WIDGET_TABLE + 'uses = ["widget"]\n',
+                          "component widget: 'uses' names 'widget', which is not another component"),
+    # Only a cross-cutting component's page is exempt from the ten subsections.
+    "not cross-cutting": (QA_TABLE, QA_TABLE.replace("cross_cutting = true\n", ""),
+                          "component qa: docs/qa.md lacks the subsection 'Purpose'"),
+    "source folder a file": ('source = ["src"]', 'source = ["src/widget.cpp"]',
+                             "component widget: source folder src/widget.cpp does not exist"),
+}
+
+
+@COMPONENT_TABLE
+@pytest.mark.parametrize("old,new,gap", COMPONENT_TABLE_GAPS.values(), ids=COMPONENT_TABLE_GAPS.keys())
+def test_component_table_gap_is_detected(repo, capsys, old, new, gap):
+    assert_edit_gives_gap(repo, capsys, old, new, gap)
+
+
+@COMPONENT_TABLE
+def test_requirement_of_a_reserved_prefix_says_to_unreserve(repo, capsys):
+    add_requirement(repo, "REQ-FLOW-001", "flow")
+    out, _ = gaps_of(repo, capsys)
+    assert ("REQ-FLOW-001: its id prefix REQ-FLOW is reserved: un-reserve component flow (delete reserved = true) "
+            "and complete its entry") in out
+    edit(repo, REQS, 'id = "REQ-FLOW-001"\ncomponent = "flow"', 'id = "REQ-FLOW-001"\ncomponent = "widget"')
+    out, _ = gaps_of(repo, capsys)
+    assert 'REQ-FLOW-001: its id prefix REQ-FLOW is reserved: un-reserve component flow' in out
+    assert 'then set component = "flow"' in out
+
+
+@COMPONENT_TABLE
+def test_unreserving_a_component_asks_for_its_folders_page_and_requirements(repo, capsys):
+    edit(repo, REQS, FLOW_TABLE, FLOW_TABLE.replace("reserved = true\n", ""))
+    out, _ = gaps_of(repo, capsys)
+    assert "component flow: no requirement names this component" in out
+    assert "component flow: source folder src/flow does not exist: create it or correct 'source'" in out
+    assert "component flow: docs file docs/models/flow.md does not exist" in out
+
+
+@COMPONENT_TABLE
+@pytest.mark.parametrize("pid,gap", [
+    ("GIZ-SPIN", "problem GIZ-SPIN: its id starts with no component's problem prefix (FLOW-, WID-): name it with "
+                 "the prefix of the component it verifies"),
+    ("FLOW-SEEP", "problem FLOW-SEEP: its id prefix FLOW- is reserved: un-reserve component flow"),
+], ids=["prefix no component's", "reserved prefix"])
+def test_problem_prefix_gap(repo, capsys, pid, gap):
+    add_problem(repo, pid, ["REQ-WIDGET-001"])
+    out, _ = gaps_of(repo, capsys)
+    assert gap in out
+
+
+@COMPONENT_TABLE
+def test_problem_naming_a_requirement_of_another_component(repo, capsys):
+    # qa is cross-cutting: any problem may name its requirements. (The edit changes an input of
+    # the stored run, which is a gap of its own.)
+    edit(repo, PROBLEM, 'requirements = ["REQ-WIDGET-001"]', 'requirements = ["REQ-WIDGET-001", "REQ-QA-001"]')
+    out, _ = gaps_of(repo, capsys)
+    assert "problem WID-SWING: input verification/problems/WID-SWING/problem.toml differs" in out
+    assert "problem WID-SWING: names REQ-QA-001" not in out
+    # A component model's requirements: only the component's own problems, or those of a component using it.
+    edit(repo, REQS, QA_TABLE, QA_TABLE.replace("cross_cutting = true\n", ""))
+    out, _ = gaps_of(repo, capsys)
+    assert ("problem WID-SWING: names REQ-QA-001 of component qa, but its prefix WID- is component widget's: "
+            "add \"qa\" to widget's uses") in out
+    edit(repo, REQS, WIDGET_TABLE, WIDGET_TABLE + 'uses = ["qa"]\n')
+    out, page = gaps_of(repo, capsys)       # qa's docs still lack the ten subsections
+    assert "problem WID-SWING: names REQ-QA-001" not in out
+    assert "(model)<br>uses qa</td>" in page
+
+
+@COMPONENT_TABLE
+def test_legacy_requirement_keeps_its_id_in_another_component(repo, capsys):
+    edit(repo, REQS, 'id = "REQ-WIDGET-002"\ncomponent = "widget"', 'id = "REQ-WIDGET-002"\ncomponent = "qa"')
+    out, _ = gaps_of(repo, capsys)
+    assert "REQ-WIDGET-002: its id prefix REQ-WIDGET is component widget's, but it is component qa's" in out
+    edit(repo, REQS, QA_TABLE, QA_TABLE + 'legacy_requirements = ["REQ-WIDGET-002"]\n')
+    code, out = run(repo, capsys)
+    assert code == 0, out
+    assert "<br>legacy REQ-WIDGET-002</td>" in (repo / "reports/traceability/rtm.html").read_text()
+    # Listed, but left in the component of its prefix.
+    edit(repo, REQS, 'id = "REQ-WIDGET-002"\ncomponent = "qa"', 'id = "REQ-WIDGET-002"\ncomponent = "widget"')
+    out, _ = gaps_of(repo, capsys)
+    assert ("REQ-WIDGET-002: component qa lists it in legacy_requirements, but it is component widget's: "
+            "set component = \"qa\"") in out
+
+
+@COMPONENT_TABLE
+@pytest.mark.parametrize("legacy,gap", [
+    ('["REQ-WIDGET-009"]', "component qa: legacy_requirements names REQ-WIDGET-009, which does not exist"),
+    ('["REQ-QA-001"]', "component qa: legacy_requirements names REQ-QA-001, whose prefix REQ-QA is the "
+                       "component's own: remove it"),
+], ids=["nonexistent", "own prefix"])
+def test_legacy_requirement_gaps(repo, capsys, legacy, gap):
+    edit(repo, REQS, QA_TABLE, QA_TABLE + f"legacy_requirements = {legacy}\n")
+    out, _ = gaps_of(repo, capsys)
+    assert gap in out
+
+
+@COMPONENT_TABLE
+def test_legacy_requirement_claimed_by_two_components(repo, capsys):
+    edit(repo, REQS, QA_TABLE, QA_TABLE + 'legacy_requirements = ["REQ-WIDGET-002"]\n')
+    edit(repo, REQS, FLOW_TABLE, FLOW_TABLE + 'legacy_requirements = ["REQ-WIDGET-002"]\n')
+    edit(repo, REQS, 'id = "REQ-WIDGET-002"\ncomponent = "widget"', 'id = "REQ-WIDGET-002"\ncomponent = "qa"')
+    out, _ = gaps_of(repo, capsys)
+    assert "component flow: legacy_requirements names REQ-WIDGET-002, which component qa lists too" in out
+
+
+@COMPONENT_TABLE
+def test_code_outside_the_components_folders_is_a_warning(repo, capsys):
+    edit(repo, REQS, 'code = ["src/widget.cpp", ', 'code = ["verification/harness/vdec_verify/__init__.py", '
+         '"verification/harness/vdec_verify/__init__.py:stand-in", "src/widget.cpp", ')
+    code, out = run(repo, capsys)
+    assert code == 0, out
+    warning = ("warning: REQ-WIDGET-001: code verification/harness/vdec_verify/__init__.py lies outside the source "
+               "folders of component widget (src)")
+    assert out.count(warning) == 1      # once per file, however many symbols it lists
+    # A folder is matched whole: src/widget.cpp does not lie in a folder named "src/wid".
+    edit(repo, REQS, 'source = ["src"]', 'source = ["src/wid"]')
+    out, _ = gaps_of(repo, capsys)
+    assert "warning: REQ-WIDGET-001: code src/widget.cpp lies outside the source folders of component widget" in out
 
 
 # ------------------------------------------------------------ summary and commits
