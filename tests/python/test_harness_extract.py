@@ -1,4 +1,5 @@
 """Extractors of the verification harness on synthetic results with known answers (REQ-QA-001)."""
+import json
 import math
 
 import numpy as np
@@ -176,3 +177,20 @@ def test_phase_end_reads_the_last_sample_of_the_phase():
     early = dict(RAMP, phases=[{"name": "a", "start_time": -1.0, "time": 0.5}])
     with pytest.raises(ExtractError, match="no sample before the end of phase 'a'"):
         extract({"kind": "phase_end", "history": "h", "phase": "a"}, early, 0)
+
+
+@pytest.mark.requirements("REQ-QA-001")
+def test_differences_counts_every_value_that_differs_between_two_runs():
+    plain = {"histories": {"h": {"t": [0.0, 1.0], "value": [1.0, 2.0]}}, "blocks": [{"name": "b", "x": 0.5}]}
+    same = json.loads(json.dumps(plain))
+    table = {"kind": "differences", "against": "plain", "keys": ["histories", "blocks"]}
+    assert extract(table, same, 0, {"": plain}) == 0.0
+    other = json.loads(json.dumps(plain))
+    other["histories"]["h"]["value"][1] = math.nextafter(2.0, 3.0)  # one ulp is a difference
+    other["blocks"].append({"name": "c"})                     # and so is a block more
+    other["blocks"][0]["x"] = 0.5
+    assert extract(table, other, 0, {"": plain}) == 2.0
+    with pytest.raises(ExtractError, match="run 'plain' wrote no results.json"):
+        extract(table, same, 0, {})
+    with pytest.raises(ExtractError, match="no 'zones' to compare"):
+        extract(dict(table, keys=["zones"]), same, 0, {"": plain})

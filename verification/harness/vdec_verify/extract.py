@@ -34,6 +34,10 @@ closure (positive closing) from a block's displacement (positive up); default 1.
     run_meta       path                               a number at a dotted path in results["run"] or
                                                       results["energy"], e.g. "energy.largest_excess"
     exit_code      (none)                             the exit code of the run
+    differences    against, keys                      how many values differ between this run's results.json
+                                                      and the run `against` ("plain" or a variant's name), over
+                                                      the given top-level keys (every number, string and length,
+                                                      compared exactly): 0 when the runs computed the same
     field, field_mean, derived                        deformable-block fields: vdec_verify.fields
 """
 from dataclasses import dataclass
@@ -243,6 +247,26 @@ def phase_end(results, table):
     return float(value[inside[-1]]) * float(table.get("scale", 1.0))
 
 
+def count_differences(a, b):
+    """The leaves (numbers, strings, booleans, nulls, and lengths of lists and key sets) that differ."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return sum(count_differences(a.get(k), b.get(k)) for k in sorted(set(a) | set(b)))
+    if isinstance(a, list) and isinstance(b, list):
+        return (len(a) != len(b)) + sum(count_differences(x, y) for x, y in zip(a, b))
+    return int(a != b or type(a) is not type(b))
+
+
+def differences(results, table, runs):
+    against = table["against"]
+    other = (runs or {}).get("" if against == "plain" else against)
+    if other is None:
+        raise ExtractError(f"run '{against}' wrote no results.json (or did not run)")
+    missing = [k for k in table["keys"] if k not in results or k not in other]
+    if missing:
+        raise ExtractError(f"the results have no '{missing[0]}' to compare")
+    return float(sum(count_differences(results[k], other[k]) for k in table["keys"]))
+
+
 def run_meta(results, table):
     node = results
     for part in table["path"].split("."):
@@ -278,6 +302,7 @@ KINDS = {
     "phase_end": Kind(phase_end, ("history", "phase"), ("scale",), False),
     "run_meta": Kind(run_meta, ("path",), (), False),
     "exit_code": Kind(None, (), (), False),
+    "differences": Kind(None, ("against", "keys"), (), False),
     "field": Kind(fields.field, ("of", "quantity"), fields.SELECTION_KEYS + ("abscissa",), True),
     "field_mean": Kind(fields.field_mean, ("of", "quantity"), fields.SELECTION_KEYS, False),
     "field_peak": Kind(fields.field_peak, ("of", "quantity"), fields.SELECTION_KEYS, False),
@@ -298,4 +323,6 @@ def extract(table, results, exit_code, runs=None):
         raise ExtractError("the run wrote no results.json")
     if kind == "derived":
         return fields.derived(results, table, exit_code, runs)
+    if kind == "differences":
+        return differences(results, table, runs)
     return KINDS[kind].function(results, table)

@@ -22,6 +22,10 @@ Keys of problem.toml:
     expect_message = "..."        required with a nonzero expect_exit (and only then): text the run's stderr
                                   must hold, so that a stop counts only when it is for the expected reason
     expect_stop = "time"          default: the problem's expect_stop (with expect_exit 0)
+    restart_after = "phase"       optional: the run is made in two: vdec run --save PHASE into the run's
+                                  saved/ folder, then vdec run --restart with that state file; the
+                                  variant's results are the restarted run's (a check of kind
+                                  "differences" compares them with the run that did not stop)
 
     [[mutation]]                  at least one: a wrong model the checks must reject (run by the full suite)
     name = "ks-half"              required, like a variant name; its runs go in mutations/<ID>/<name>/
@@ -104,7 +108,7 @@ PROBLEM_KEYS = ("id", "title", "requirements", "scene", "level", "overrides", "e
                 "timeout_seconds", "variant", "refinement", "check", "mutation")
 # Tables planned for later work: named here so that using one says so rather than "unknown key".
 PLANNED_KEYS = {}
-VARIANT_KEYS = ("name", "overrides", "expect_exit", "expect_message", "expect_stop")
+VARIANT_KEYS = ("name", "overrides", "expect_exit", "expect_message", "expect_stop", "restart_after")
 CHECK_KEYS = ("quantity", "extract", "reference", "norm", "rtol", "atol", "justification", "tolerance_basis",
               "variant", "refinement")
 MUTATION_KEYS = ("name", "overrides", "why", "runs")
@@ -135,6 +139,7 @@ class Run:
     expect_exit: int
     expect_message: str = ""
     expect_stop: str = ""     # run.stop_reason expected; "error" for a nonzero expect_exit
+    restart_after: str = ""   # a phase: the run saves its state after it, then restarts from the file
 
     @property
     def label(self):
@@ -597,7 +602,11 @@ def load_problem(path):
                                                   "\"lower solver.frac\"), so that a stop for another reason fails")
         stop = _expected_stop(errors, v.get("expect_stop", expect_stop), code, f"{where}.expect_stop",
                               "expect_stop" in v)
-        variants.append(Run(name, overrides + extra, code, message, stop))
+        restart_after = v.get("restart_after", "")
+        if not isinstance(restart_after, str) or ("restart_after" in v and not restart_after):
+            errors.add(f"{where}.restart_after", "must be the name of a phase of the scene")
+            restart_after = ""
+        variants.append(Run(name, overrides + extra, code, message, stop, restart_after))
 
     refinement = None
     if "refinement" in data:
@@ -666,7 +675,11 @@ def load_problem(path):
     if "refinement" in data and raw_checks and not any(c.refinement for c in checks):
         errors.add("refinement", "no [[check]] has refinement = true: the study has nothing to study")
     runs = list(variants)
-    if any(c.variant == "" and not c.refinement for c in checks):
+    def reads_plain(c):
+        extract = c.extract if isinstance(c.extract, dict) else {}
+        return (c.variant == "" and not c.refinement) or (extract.get("kind") == "differences"
+                                                           and extract.get("against") == "plain")
+    if any(reads_plain(c) for c in checks):
         plain_stop = _expected_stop(errors, expect_stop, expect_exit, "expect_stop", "expect_stop" in data)
         runs.insert(0, Run("", overrides, expect_exit, "", plain_stop))
     if refinement is not None:

@@ -12,6 +12,7 @@ import json
 import math
 import os
 import shlex
+import shutil
 import subprocess
 import sys
 import time
@@ -143,6 +144,26 @@ def _text(stream):
     return stream.decode(errors="replace") if isinstance(stream, bytes) else (stream or "")
 
 
+class SaveFailed(OSError):
+    """The first half of a restarted run did not write its state."""
+
+
+def _save_then_restart(command, folder, phase, timeout):
+    """Runs `command` with --save PHASE into folder/saved and returns the command that restarts
+    from the state it wrote, with the output in folder."""
+    saved = folder / "saved"
+    shutil.rmtree(saved, ignore_errors=True)
+    first = [*command[:4], str(saved), *command[5:], "--save", phase]
+    done = subprocess.run(first, capture_output=True, text=True, timeout=timeout, stdin=subprocess.DEVNULL,
+                          env=RUN_ENVIRONMENT)
+    (folder / "save-stderr.txt").write_text(done.stderr)
+    states = sorted(saved.glob("after-phase-*.vdecstate"))
+    if done.returncode != 0 or len(states) != 1:
+        raise SaveFailed(f"the run saving after phase '{phase}' exited {done.returncode} "
+                         f"({_last_line(done.stderr) or 'no message'}) and wrote {len(states)} state files")
+    return [*command, "--restart", str(states[0])]
+
+
 def execute(problem, run, vdec, out, mutation=None):
     """One run of vdec; never raises: anything that goes wrong is in the outcome's failure.
     A run of a mutation goes in mutations/<ID>/<name>/[<run>]."""
@@ -158,6 +179,10 @@ def execute(problem, run, vdec, out, mutation=None):
             (folder / name).unlink(missing_ok=True)
         (folder / "command.txt").write_text(shlex.join(command) + "\n")
         try:
+            if run.restart_after:
+                command = _save_then_restart(command, folder, run.restart_after, problem.timeout_seconds)
+                outcome.command = command
+                (folder / "command.txt").write_text(shlex.join(command) + "\n")
             completed = subprocess.run(command, capture_output=True, text=True, timeout=problem.timeout_seconds,
                                        stdin=subprocess.DEVNULL, env=RUN_ENVIRONMENT)
             stdout, stderr = completed.stdout, completed.stderr
@@ -165,6 +190,9 @@ def execute(problem, run, vdec, out, mutation=None):
         except subprocess.TimeoutExpired as e:
             stdout, stderr = _text(e.stdout), _text(e.stderr)
             outcome.failure = f"timed out after {problem.timeout_seconds:g} s (timeout_seconds) and was stopped"
+        except SaveFailed as e:
+            stdout, stderr = "", ""
+            outcome.failure = str(e)
         except OSError as e:
             stdout, stderr = "", ""
             outcome.failure = f"cannot start {vdec}: {e}"
