@@ -212,7 +212,8 @@ static StopCriteria readStop(TableReader& t) {
 
 // `geometry` is the model as the phase will find it (excavated by the phases before), on which
 // its boundaries select gridpoints and edges; `m` receives their time functions.
-static Phase readPhase(TableReader& r, Model& m, std::optional<Model>& geometry, std::set<std::string>& activeBoundaries,
+static Phase readPhase(TableReader& r, Model& m, std::vector<std::string>& warnings, std::optional<Model>& geometry,
+                       std::set<std::string>& activeBoundaries,
                        const std::function<int(TableReader&, std::string_view, const std::string&)>& blockIndex) {
   Phase phase;
   phase.name = r.string("name");
@@ -260,6 +261,53 @@ static Phase readPhase(TableReader& r, Model& m, std::optional<Model>& geometry,
       r.fail("free", "no boundary named '" + name + "' is active when the phase starts (give [[boundary]] or an "
                      "earlier phase's [[phase.boundary]] that name)");
     c.freeBoundaries.push_back(name);
+  }
+  for (auto [table, prefix] : r.tables("block_material")) {
+    TableReader br(*table, prefix, r.file());
+    const std::string name = br.string("name");
+    int material = -1;
+    for (std::size_t i = 0; i < m.blockMaterials.size(); ++i)
+      if (m.blockMaterials[i].name == name) material = static_cast<int>(i);
+    if (material < 0) br.fail("name", "no block material named '" + name + "'");
+    BlockMaterial changed = m.blockMaterials[material];
+    changed.plastic = false;
+    readPlasticity(br, changed, warnings);
+    br.finish();
+    if (!changed.plastic)
+      br.failTable("changes nothing: give the Mohr-Coulomb strength, friction and cohesion (and dilation, tension)");
+    c.blockStrengths.emplace_back(material, changed.mohrCoulomb);
+  }
+  for (auto [table, prefix] : r.tables("block")) {
+    TableReader br(*table, prefix, r.file());
+    RigidBlockChange change;
+    change.block = blockIndex(br, "name", br.string("name"));
+    if (m.blocks.deformable[change.block])
+      br.fail("name", "block '" + m.blocks.name[change.block] + "' is deformable: a phase holds, drives and loads its "
+                      "gridpoints through [[phase.boundary]] tables");
+    auto dofs = [&](const char* key) {
+      std::uint8_t bits = 0;
+      for (const std::string& dof : br.has(key) ? br.strings(key) : std::vector<std::string>{}) {
+        const std::uint8_t bit = dof == "x" ? DriveX : dof == "y" ? DriveY : dof == "rotation" ? DriveRotation : 0;
+        if (!bit) br.fail(key, "unknown degree of freedom '" + dof + "'; use \"x\", \"y\" or \"rotation\"");
+        bits |= bit;
+      }
+      return bits;
+    };
+    change.fix = dofs("fix");
+    change.free = dofs("free");
+    if (change.fix & change.free) br.fail("free", "a degree of freedom is both fixed and freed");
+    if (br.has("velocity") && !(change.fix & (DriveX | DriveY)))
+      br.fail("velocity", "drives the components given in fix (\"x\", \"y\"); add them to fix");
+    if (br.has("angular_velocity") && !(change.fix & DriveRotation))
+      br.fail("angular_velocity", "drives the rotation: add \"rotation\" to fix");
+    change.velocity = br.vec2("velocity", {0.0, 0.0});
+    change.angularVelocity = br.number("angular_velocity", 0.0);
+    if (br.has("force")) change.force = br.vec2("force");
+    if (br.has("moment")) change.moment = br.number("moment");
+    br.finish();
+    if (!change.fix && !change.free && !change.force && !change.moment)
+      br.failTable("changes nothing: give fix, free, force and/or moment");
+    c.blocks.push_back(change);
   }
   for (auto [table, prefix] : r.tables("excavation")) {
     TableReader er(*table, prefix, r.file());
@@ -611,7 +659,7 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
   std::optional<Model> excavated;  // a copy of the model, excavated as the phases will, once one does
   for (auto [table, prefix] : top.tables("phase")) {
     TableReader r(*table, prefix, path);
-    scene.settings.phases.push_back(readPhase(r, m, excavated, activeBoundaries, blockIndex));
+    scene.settings.phases.push_back(readPhase(r, m, scene.warnings, excavated, activeBoundaries, blockIndex));
     for (std::size_t i = 0; i + 1 < scene.settings.phases.size(); ++i)
       if (scene.settings.phases[i].name == scene.settings.phases.back().name)
         r.fail("name", "phase '" + scene.settings.phases[i].name + "' is defined twice");

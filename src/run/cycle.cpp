@@ -422,6 +422,11 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
     settings_.adaptiveDamping = false;
     alpha_ = *changes.massDamping;
   }
+  for (const auto& [material, strength] : changes.blockStrengths) {
+    model_.blockMaterials[material].mohrCoulomb = strength;
+    model_.blockMaterials[material].plastic = true;
+  }
+  if (!changes.blocks.empty()) changeRigidBlocks(changes.blocks);
   for (const ExcavationRegion& region : changes.excavations) excavate(region);
   const bool loaded = !model_.loadedEdges.empty(), driven = !model_.drivenVelocities.empty();
   for (const std::string& name : changes.freeBoundaries) freeBoundaryCondition(model_, name);
@@ -465,6 +470,42 @@ void Cycle::closePhase(PhaseReport& done, Clock::time_point started) const {
   done.time = model_.time - done.startTime;
   done.unbalancedRatio = monitors_.unbalancedRatio;
   done.wallSeconds = std::chrono::duration<double>(Clock::now() - started).count();
+}
+
+void Cycle::changeRigidBlocks(const std::vector<RigidBlockChange>& changes) {
+  Blocks& bl = model_.blocks;
+  // The kinetic energy of a component counts while it is free: one that becomes driven takes
+  // its energy out of the account, one that is released brings its present motion in.
+  auto kinetic = [&](int b, std::uint8_t dofs) {
+    double e = 0.0;
+    if (dofs & DriveX) e += 0.5 * bl.mass[b] * bl.velocity[b].x * bl.velocity[b].x;
+    if (dofs & DriveY) e += 0.5 * bl.mass[b] * bl.velocity[b].y * bl.velocity[b].y;
+    if (dofs & DriveRotation) e += 0.5 * bl.inertia[b] * bl.angularVelocity[b] * bl.angularVelocity[b];
+    return e;
+  };
+  bool released = false;
+  for (const RigidBlockChange& c : changes) {
+    const int b = c.block;
+    const std::uint8_t before = bl.driven[b];
+    const std::uint8_t newlyDriven = c.fix & ~before, newlyFree = c.free & before;
+    energy_.withdraw(kinetic(b, newlyDriven) - kinetic(b, newlyFree));
+    bl.driven[b] = static_cast<std::uint8_t>((before | c.fix) & ~c.free);
+    released = released || newlyFree;
+    if (c.fix) {
+      bl.velocityHistory[b] = -1;  // a phase's drive is constant
+      if (c.fix & DriveX) bl.velocity[b].x = c.velocity.x;
+      if (c.fix & DriveY) bl.velocity[b].y = c.velocity.y;
+      if (c.fix & DriveRotation) bl.angularVelocity[b] = c.angularVelocity;
+    }
+    if (c.force) bl.appliedForce[b] = *c.force;
+    if (c.moment) bl.appliedMoment[b] = *c.moment;
+  }
+  if (!released) return;
+  // A released block may be lighter than those the rigid-block step was formed from: form it again
+  // over the blocks now free; the step may only shrink.
+  const double dtBlocks = rigidBlockTimeStep(model_, settings_.frac);
+  dt_ = std::min(dt_, dtBlocks / (settings_.localDamping > 0.0 ? std::sqrt(1.0 + settings_.localDamping) : 1.0));
+  contactStepFraction_ = settings_.frac * dt_ / dtBlocks;
 }
 
 void Cycle::excavate(const ExcavationRegion& region) {

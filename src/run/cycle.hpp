@@ -29,12 +29,25 @@ struct JointStrengthChange {
   std::optional<double> tanFriction, cohesion, tension;
 };
 
+// A rigid block's degrees of freedom and loads changed at the start of a phase.
+struct RigidBlockChange {
+  int block = -1;
+  std::uint8_t fix = 0;             // DriveX / DriveY / DriveRotation bits driven from now on
+  std::uint8_t free = 0;            // bits released, moving on from their present velocity
+  Vec2 velocity;                    // of the components in `fix` (zero: held still)
+  double angularVelocity = 0.0;
+  std::optional<Vec2> force;        // replaces the applied force
+  std::optional<double> moment;     // replaces the applied moment
+};
+
 // What a phase changes before its first step. Unset members keep the state of the phase before.
 struct PhaseChanges {
   std::optional<Vec2> gravity;
   std::vector<JointStrengthChange> joints;
   std::optional<double> massDamping;     // switches adaptive damping off
   std::optional<bool> adaptiveDamping;
+  std::vector<RigidBlockChange> blocks;
+  std::vector<std::pair<int, MohrCoulombProperties>> blockStrengths;  // block material -> its new strength
   std::vector<ExcavationRegion> excavations;     // zones removed first, in order
   std::vector<std::string> freeBoundaries;       // names of active boundary conditions taken off
   std::vector<BoundaryCondition> boundaries;      // then applied, their histories from the phase's start
@@ -160,6 +173,7 @@ class Cycle {
   void beginPhase(const PhaseChanges& changes);
   void checkDamping(const std::string& where) const;
   void excavate(const ExcavationRegion& region);
+  void changeRigidBlocks(const std::vector<RigidBlockChange>& changes);
   void closePhase(PhaseReport& done, std::chrono::steady_clock::time_point started) const;
   void printProgress(bool final) const;
 
