@@ -726,6 +726,16 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
         r.fail("point", "is not inside block '" + m.blocks.name[h.block] + "': a zone history samples the zone that holds the point");
     }
     if (r.has("every")) h.every = static_cast<int>(r.integer("every", 1, std::numeric_limits<int>::max()));
+    // A zone a phase will excavate (at the positions the scene gives) cannot be sampled after it.
+    if (h.zone >= 0) {
+      const auto& n = m.zones.gridpoint[h.zone];
+      const Vec2 c = (1.0 / 3.0) * (m.gridpoints.position[n[0]] + m.gridpoints.position[n[1]] + m.gridpoints.position[n[2]]);
+      for (const Phase& phase : scene.settings.phases)
+        for (const ExcavationRegion& region : phase.changes.excavations)
+          if (region.contains(c))
+            r.fail("point", "lies in a zone that " + region.where + " of phase '" + phase.name +
+                                "' excavates; give the history a point in a zone that stays");
+    }
     r.finish();
     scene.histories.push_back(h);
   }

@@ -117,6 +117,14 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     if (j.law != JointLaw::PointContact) stepStiffness_ = std::max({stepStiffness_, j.kn, j.ks});
   alpha_ = settings_.adaptiveDamping ? kAdaptiveStart / dt_ : settings_.massDamping;
   checkDamping("solver.mass_damping");
+  // Each phase's mass damping against the step, before the first step rather than when it starts.
+  for (const Phase& phase : settings_.phases)
+    if (phase.changes.massDamping && !(*phase.changes.massDamping * dt_ <= 2.0)) {
+      const double kept = alpha_;
+      alpha_ = *phase.changes.massDamping;
+      checkDamping("phase '" + phase.name + "': mass_damping");
+      alpha_ = kept;
+    }
 
   // Driven velocities as the run starts, f(0) times the input, which the first history sample
   // shows; every step then sets them to f(t + dt/2).

@@ -1,6 +1,6 @@
 #pragma once
 // Excavation of zones during a run (a phase's [[phase.excavation]]): the zones whose centroid
-// lies in a region go; docs/models/run-phases.md#excavation-in-a-phase.
+// lies in a region go; docs/user-manual/scene-format.md#phase and docs/models/run-phases.md.
 #include <functional>
 #include <string>
 #include <vector>

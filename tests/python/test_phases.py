@@ -3,6 +3,7 @@ errors of [[phase]] tables (docs/user-manual/scene-format.md#phase)."""
 import json
 import math
 import os
+import shutil
 import subprocess
 from pathlib import Path
 
@@ -136,9 +137,23 @@ stop = { cycles = 10 }
     ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\nmass_damping = 1e9\n", "phase 'a': mass_damping = 1e+09 1/s times the time step"),
 ])
 def test_bad_phase_tables_are_scene_errors_naming_the_key(tmp_path, extra, message):
-    done, _ = run(tmp_path, BLOCKS + extra)
+    done, results = run(tmp_path, BLOCKS + extra)
     assert done.returncode == 3, done.stderr
     assert message in done.stderr, done.stderr
+    assert results is None  # found before the first step: no results
+
+
+@REQ
+def test_a_zone_history_in_a_zone_a_phase_excavates_is_a_scene_error(tmp_path):
+    folder = tmp_path / "problem"
+    shutil.copytree(ROOT / "verification" / "problems" / "RUN-EXCAVATION-KIRSCH", folder)
+    scene = folder / "scene.toml"
+    scene.write_text(scene.read_text() + '[[history]]\nname = "inner"\nquantity = "zone.sxx"\nblock = "plate"\n'
+                                          'point = [0.5, 0.1]\n')
+    done = subprocess.run([VDEC, "run", str(scene), "--out", str(tmp_path / "out")], capture_output=True, text=True)
+    assert done.returncode == 3
+    assert "key 'history[0].point': lies in a zone that" in done.stderr and "of phase 'excavate' excavates" in done.stderr
+    assert not (tmp_path / "out" / "results.json").exists()
 
 
 @REQ
