@@ -3,6 +3,7 @@ errors of [[phase]] tables (docs/user-manual/scene-format.md#phase)."""
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -293,3 +294,23 @@ def test_bad_phase_block_material_tables_are_scene_errors(tmp_path, extra, messa
     done, _ = run(tmp_path, BLOCKS + '[[phase]]\nname = "a"\nstop = { cycles = 5 }\n' + extra)
     assert done.returncode == 3, done.stderr
     assert message in done.stderr, done.stderr
+
+
+@REQ
+def test_a_phase_may_not_excavate_at_an_outline_that_touches_other_blocks(tmp_path):
+    # DB-JOINT-STACK's two blocks: a phase excavating the zones of the upper block next to the
+    # joint would cut the outline its contacts follow; exit code 4 naming the gridpoint.
+    scene = (ROOT / "verification" / "problems" / "DB-JOINT-STACK" / "scene.toml").read_text()
+    scene = re.sub(r"(?ms)^\[stop\]\n(?:[^\[].*?\n)*", "", scene)
+    done, _ = run(tmp_path, scene + """
+[[phase]]
+name = "settle"
+stop = { cycles = 50 }
+[[phase]]
+name = "cut"
+stop = { cycles = 50 }
+[[phase.excavation]]
+circle = { centre = [0.5, 1.1], radius = 0.15 }
+""")
+    assert done.returncode == 4, done.stderr
+    assert "[phase[1].excavation[0]] removes a zone of block 'upper' at the block's outline" in done.stderr
