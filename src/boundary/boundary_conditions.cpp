@@ -24,6 +24,11 @@ double addBoundaryCondition(Model& m, BoundaryCondition condition, double timeOr
     if (condition.velocityBits & DriveY)
       m.drivenVelocities.push_back({i, 1, condition.velocity.y, condition.history, timeOrigin, source});
   }
+  for (ViscousEdge e : condition.dashpots) {
+    e.source = source;
+    m.viscousEdges.push_back(e);
+  }
+  if (!m.viscousEdges.empty()) g.dashpotForce.resize(g.size());
   for (LoadedEdge e : condition.edges) {
     e.timeOrigin = timeOrigin;
     e.source = source;
@@ -41,6 +46,7 @@ bool freeBoundaryCondition(Model& m, const std::string& name) {
   const int source = static_cast<int>(found - m.boundaryConditions.begin());
   std::erase_if(m.loadedEdges, [source](const LoadedEdge& e) { return e.source == source; });
   std::erase_if(m.drivenVelocities, [source](const DrivenVelocity& d) { return d.source == source; });
+  std::erase_if(m.viscousEdges, [source](const ViscousEdge& e) { return e.source == source; });
   Gridpoints& g = m.gridpoints;
   for (const int i : found->gridpoints) g.driven[i] = (g.driven[i] & Excavated) ? DriveX | DriveY | Excavated : 0;
   for (const BoundaryCondition& b : m.boundaryConditions)

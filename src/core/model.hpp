@@ -103,6 +103,7 @@ struct Gridpoints {
   // The forces contacts put on the gridpoint this step (1.3.3.4.2), gathered in contact order so
   // that the sum does not depend on threads; empty when no deformable block can touch another.
   std::vector<Vec2> contactForce;
+  std::vector<Vec2> dashpotForce;    // viscous boundaries' force of the step; empty without them
 
   int size() const { return static_cast<int>(block.size()); }
 };
@@ -148,6 +149,15 @@ struct DrivenVelocity {
   int source = -1;
 };
 
+// A viscous boundary edge (Lysmer and Kuhlemeyer, 1.3-35, 1.3-36): normal and shear dashpots of
+// the impedances rho C_p and rho C_s of the block's material, per unit length of the edge.
+struct ViscousEdge {
+  int from = -1, to = -1;        // gridpoints, counter-clockwise along the block boundary
+  double normalImpedance = 0.0;  // rho C_p, Pa s/m
+  double shearImpedance = 0.0;   // rho C_s
+  int source = -1;
+};
+
 // One [[boundary]] table (of the scene or of a phase) resolved to gridpoints and edges: what
 // boundary/boundary_conditions applies to a model and takes off it again.
 struct BoundaryCondition {
@@ -158,6 +168,7 @@ struct BoundaryCondition {
   Vec2 velocity;                     // of the velocityBits components (times the history, if any)
   int history = -1;
   std::vector<LoadedEdge> edges;     // loaded by a stress or pressure
+  std::vector<ViscousEdge> dashpots; // viscous
   bool active = true;
 };
 
@@ -251,6 +262,7 @@ struct Model {
   std::vector<LoadedEdge> loadedEdges;
   std::vector<DrivenVelocity> drivenVelocities;  // only those with a time history
   std::vector<BoundaryCondition> boundaryConditions;  // all ever applied, freed ones inactive
+  std::vector<ViscousEdge> viscousEdges;
   std::vector<TimeFunction> timeFunctions;
   // The outline edges of deformable blocks (outer boundaries and holes), each directed with the
   // block on its left: gridpoints from -> to.
@@ -268,6 +280,7 @@ struct Model {
     std::fill(blocks.moment.begin(), blocks.moment.end(), 0.0);
     std::fill(gridpoints.contactForce.begin(), gridpoints.contactForce.end(), Vec2{});
     std::fill(gridpoints.tractionForce.begin(), gridpoints.tractionForce.end(), Vec2{});
+    std::fill(gridpoints.dashpotForce.begin(), gridpoints.dashpotForce.end(), Vec2{});
   }
   bool hasYieldingJoints() const {
     for (const JointMaterial& j : jointMaterials)

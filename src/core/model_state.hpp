@@ -36,7 +36,7 @@ void visitState(A& a, Vertices& v) {
 template <class A>
 void visitState(A& a, Gridpoints& g) {
   a(g.block), a(g.initialPosition), a(g.position), a(g.velocity), a(g.tractionForce), a(g.mass), a(g.gravityMass);
-  a(g.stiffness), a(g.driven), a(g.contactForce);
+  a(g.stiffness), a(g.driven), a(g.contactForce), a(g.dashpotForce);
 }
 template <class A>
 void visitState(A& a, Zones& z) {
@@ -45,13 +45,14 @@ void visitState(A& a, Zones& z) {
 }
 template <class A>
 void visitState(A& a, BoundaryCondition& b) {
-  a(b.name), a(b.gridpoints), a(b.fix), a(b.velocityBits), a(b.velocity), a(b.history), a(b.edges), a(b.active);
+  a(b.name), a(b.gridpoints), a(b.fix), a(b.velocityBits), a(b.velocity), a(b.history), a(b.edges), a(b.dashpots);
+  a(b.active);
 }
 template <class A>
 void visitState(A& a, Model& m) {
   a(m.blockMaterials), a(m.jointMaterials), a(m.blocks), a(m.vertices), a(m.gridpoints), a(m.zones);
   a(m.gridpointZones.start), a(m.gridpointZones.slot), a(m.loadedEdges), a(m.drivenVelocities);
-  a(m.boundaryConditions);
+  a(m.boundaryConditions), a(m.viscousEdges);
   a(m.timeFunctions), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
   a(m.defaultJoint), a(m.gravity), a(m.roundingLength), a(m.contactTolerance), a(m.time), a(m.cycle);
 }

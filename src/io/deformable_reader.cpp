@@ -410,12 +410,28 @@ BoundaryCondition readBoundary(TableReader& r, Model& m, const std::string& path
     }
     if (count == 0) r.failTable("selects no gridpoint of block '" + m.blocks.name[block] + "': check x, y, r, angle");
 
+    if (r.boolean("viscous", false)) {
+      for (const char* key : {"fix", "velocity_x", "velocity_y", "stress", "pressure", "stress_table", "history",
+                              "stress_gradient_x", "stress_gradient_y"})
+        if (r.has(key))
+          r.fail(key, "a viscous boundary only absorbs; give fixities, velocities and stresses in other tables");
+      const BlockMaterial& mat = m.blockMaterials[m.blocks.material[block]];
+      for (const Model::BoundaryEdge& be : m.boundaryEdges)
+        if (be.block == block && selected[be.from] && selected[be.to])
+          condition.dashpots.push_back({be.from, be.to, std::sqrt(mat.density * (mat.bulk + 4.0 * mat.shear / 3.0)),
+                                        std::sqrt(mat.density * mat.shear), -1});
+      if (condition.dashpots.empty())
+        r.failTable("selects no boundary edge of block '" + m.blocks.name[block] +
+                    "': dashpots act on edges of the block's outline whose two ends are both selected");
+      r.finish();
+      return condition;
+    }
     const bool fix = r.has("fix"), vx = r.has("velocity_x"), vy = r.has("velocity_y");
     const bool tabulated = r.has("stress_table");
     const bool stress = r.has("stress") || tabulated, pressure = r.has("pressure");
     if (tabulated && r.has("stress")) r.fail("stress_table", "give either stress or stress_table");
     if (!(fix || vx || vy || stress || pressure))
-      r.failTable("sets nothing: give fix, velocity_x, velocity_y, stress or pressure");
+      r.failTable("sets nothing: give fix, velocity_x, velocity_y, stress, pressure or viscous = true");
     if ((fix || vx || vy) && (stress || pressure))
       r.failTable("a boundary either drives gridpoints (fix, velocity) or loads edges (stress, pressure); use two tables");
     if (stress && pressure) r.fail("pressure", "give either stress or pressure");

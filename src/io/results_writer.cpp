@@ -156,6 +156,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                  {"plastic_dissipation", report.energy.plasticDissipation},
                  {"damping_dissipation", report.energy.dampingDissipation},
                  {"largest_excess", report.energy.largestExcess}};
+  for (const BoundaryCondition& b : m.boundaryConditions)
+    if (!b.dashpots.empty()) j["energy"]["boundary_dissipation"] = report.energy.boundaryDissipation;
   if (!report.phases.empty()) {
     j["energy"]["removed"] = report.energy.removed;
     json phases = json::array();

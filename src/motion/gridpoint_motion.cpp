@@ -35,6 +35,7 @@ MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha, double l
   const double lose = 1.0 - 0.5 * alpha * dt, keep = 1.0 / (1.0 + 0.5 * alpha * dt);
   const Vec2 gravity = m.gravity;
   const Vec2* contactForce = g.contactForce.empty() ? nullptr : g.contactForce.data();
+  const Vec2* dashpotForce = g.dashpotForce.empty() ? nullptr : g.dashpotForce.data();
   auto step = [&](int i, MotionStepTotals& t) {
     Vec2 zoneForce, absolute;
     for (int k = gz.start[i]; k < gz.start[i + 1]; ++k) {
@@ -48,13 +49,15 @@ MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha, double l
     const Vec2 body = g.gravityMass[i] * gravity + g.tractionForce[i];
     // Contact forces are internal, like the zones': the joints' springs hold their energy.
     const Vec2 internal = contactForce ? zoneForce + contactForce[i] : zoneForce;
-    const Vec2 load = internal + body;
+    const Vec2 dashpot = dashpotForce ? dashpotForce[i] : Vec2{};
+    const Vec2 load = internal + body + dashpot;
     const Vec2 v0 = g.velocity[i];
     Vec2 v1 = v0;
     const double mass = g.mass[i];
     double unbalanced = 0.0;
     bool free = false;
-    auto advance = [&](bool driven, double u0, double force, double bodyForce, double internalForce) {
+    auto advance = [&](bool driven, double u0, double force, double bodyForce, double internalForce,
+                       double dashpotComponent) {
       if (driven) {
         t.externalWork -= internalForce * u0 * dt;  // the driver's work on the block through zones and joints
         return u0;
@@ -65,6 +68,7 @@ MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha, double l
       const double u1 = keep * (lose * u0 + (dt / mass) * (force + damping));
       const double ubar = 0.5 * (u0 + u1);
       t.dampingDissipation -= damping * ubar * dt;
+      t.boundaryDissipation -= dashpotComponent * ubar * dt;
       t.kineticEnergy += 0.25 * mass * (u0 * u0 + u1 * u1);
       t.kineticLag += 0.5 * mass * u0 * u1;
       t.externalWork += bodyForce * u1 * dt;
@@ -73,8 +77,8 @@ MotionStepTotals integrateGridpoints(Model& m, double dt, double alpha, double l
       t.kineticRate += mass * ubar * (u1 - u0) / dt;
       return u1;
     };
-    v1.x = advance(g.driven[i] & DriveX, v0.x, load.x, body.x, internal.x);
-    v1.y = advance(g.driven[i] & DriveY, v0.y, load.y, body.y, internal.y);
+    v1.x = advance(g.driven[i] & DriveX, v0.x, load.x, body.x, internal.x, dashpot.x);
+    v1.y = advance(g.driven[i] & DriveY, v0.y, load.y, body.y, internal.y, dashpot.y);
     // The largest unbalanced force and speed are kept squared and rooted once at the end:
     // the square root is monotonic, so the largest root is the root of the largest square.
     if (free) {

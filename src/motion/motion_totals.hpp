@@ -21,6 +21,7 @@ struct MotionStepTotals {
   double kineticEnergy = 0.0;       // time-centred: mean of the energies at t - dt/2 and t + dt/2
   double externalWork = 0.0;        // by gravity, applied loads, tractions and drivers over the step
   double dampingDissipation = 0.0;  // by mass damping (alpha m vbar^2 dt) or local damping (-F_d vbar dt)
+  double boundaryDissipation = 0.0; // by viscous boundaries' dashpots (-F_v vbar dt)
   double largestUnbalancedForce = 0.0;
   double largestDisplacement = 0.0; // of any vertex or gridpoint over the step (bounds contact detection)
   double dampingPower = 0.0;        // sum m vbar^2 (times alpha: the power mass damping absorbs; 1.3-23)
@@ -37,6 +38,7 @@ struct MotionStepTotals {
     kineticEnergy += o.kineticEnergy;
     externalWork += o.externalWork;
     dampingDissipation += o.dampingDissipation;
+    boundaryDissipation += o.boundaryDissipation;
     largestUnbalancedForce = std::max(largestUnbalancedForce, o.largestUnbalancedForce);
     largestDisplacement = std::max(largestDisplacement, o.largestDisplacement);
     dampingPower += o.dampingPower;

@@ -14,6 +14,7 @@
 #include "motion/gridpoint_motion.hpp"
 #include "motion/rigid_motion.hpp"
 #include "boundary/boundary_conditions.hpp"
+#include "boundary/viscous_boundary.hpp"
 #include "zone/cst.hpp"
 #include "zone/direct_solve.hpp"
 
@@ -222,6 +223,8 @@ void Cycle::buildStages() {
                          energy_.addDissipation(0.0, 0.0, t.plasticDissipation);
                        }});
     if (!model_.loadedEdges.empty()) stages_.push_back({"boundary-tractions", [this] { applyEdgeTractions(model_); }});
+    if (!model_.viscousEdges.empty())
+      stages_.push_back({"viscous-boundaries", [this] { applyViscousBoundaries(model_); }});
     if (!model_.drivenVelocities.empty())
       stages_.push_back({"boundary-velocities", [this] { applyDrivenVelocities(model_, dt_); }});
   }
@@ -259,7 +262,7 @@ void Cycle::finishStep() {
   // half after.
   energy_.supplyHalf(t.externalWork);
   checkEnergy();
-  energy_.closeStep(t.externalWork, t.dampingDissipation);
+  energy_.closeStep(t.externalWork, t.dampingDissipation, t.boundaryDissipation);
   checkReversingMotion(t);
   if (settings_.adaptiveDamping) adaptDamping(t);
   model_.time += dt_;
@@ -436,11 +439,14 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
   }
   if (!changes.blocks.empty()) changeRigidBlocks(changes.blocks);
   for (const ExcavationRegion& region : changes.excavations) excavate(region);
-  const bool loaded = !model_.loadedEdges.empty(), driven = !model_.drivenVelocities.empty();
+  const bool loaded = !model_.loadedEdges.empty(), driven = !model_.drivenVelocities.empty(),
+             viscous = !model_.viscousEdges.empty();
   for (const std::string& name : changes.freeBoundaries) freeBoundaryCondition(model_, name);
   for (const BoundaryCondition& b : changes.boundaries) energy_.withdraw(addBoundaryCondition(model_, b, model_.time));
   // A stage for tractions or driven velocities where there were none before, or none where they all went.
-  if (loaded != !model_.loadedEdges.empty() || driven != !model_.drivenVelocities.empty()) buildStages();
+  if (loaded != !model_.loadedEdges.empty() || driven != !model_.drivenVelocities.empty() ||
+      viscous != !model_.viscousEdges.empty())
+    buildStages();
   Blocks& bl = model_.blocks;
   Gridpoints& g = model_.gridpoints;
   if (changes.resetVelocities) {

@@ -18,6 +18,7 @@ struct EnergyReport {
   double plasticDissipation = 0.0; // by Mohr-Coulomb zones
   double removed = 0.0;            // taken out without work between phases (resets, excavation)
   double dampingDissipation = 0.0; // by mass damping
+  double boundaryDissipation = 0.0; // by viscous boundaries
   double largestExcess = 0.0;      // max over the run of (kinetic + strain - supplied) / largest supplied
 };
 
@@ -56,11 +57,12 @@ class EnergyLedger {
     terms_.largestExcess = std::max(terms_.largestExcess, excess / largestSupplied_);
     return excess;
   }
-  void closeStep(double externalWork, double damping) {
+  void closeStep(double externalWork, double damping, double boundary) {
     supplyHalf(externalWork);
     terms_.externalWork += externalWork;
     lastExternalWork_ = externalWork;
     terms_.dampingDissipation += damping;
+    terms_.boundaryDissipation += boundary;
   }
 
   double mechanical() const { return terms_.kinetic + terms_.strain; }

@@ -569,3 +569,25 @@ def test_kirsch_excavation_displacement_is_kirsch_less_the_plate_before_the_hole
     assert np.allclose(hy, ky - eyy * y, rtol=1e-12, atol=1e-18)
     with pytest.raises(ValueError, match="inside the hole"):
         el.kirsch_excavation_displacement(x=[0.5], y=[0.0], a=1.0, S_x=-1.0, S_y=0.0, E=E, nu=nu)
+
+
+@pytest.mark.requirements("REQ-QA-003")
+def test_half_sine_pulse_and_constrained_wave_speed():
+    # E = 10 GPa, nu = 0.25: K = 6.667 GPa, G = 4 GPa, M = K + 4G/3 = 12 GPa; rho = 2500: 2190.89 m/s
+    c = el.constrained_wave_speed(E=10e9, nu=0.25, rho=2500.0)
+    assert c == pytest.approx(math.sqrt(12e9 / 2500.0), rel=1e-12)
+    arrival = 45.0 / c
+    v = el.half_sine_pulse_velocity([arrival - 1e-6, arrival + 0.005, arrival + 0.0025, arrival + 0.0100001],
+                                    distance=45.0, c=c, amplitude=-0.01, duration=0.01)
+    assert v[0] == 0.0 and v[3] == 0.0
+    assert v[1] == pytest.approx(-0.01, rel=1e-12)
+    assert v[2] == pytest.approx(-0.01 * math.sin(math.pi / 4.0), rel=1e-12)
+
+
+@pytest.mark.requirements("REQ-QA-003")
+def test_half_sine_pulse_energy_is_the_integral_of_the_power():
+    from scipy.integrate import quad
+    rho, c, width, amplitude, duration = 2500.0, 2190.0, 1.0, 0.01, 0.01
+    power = lambda t: rho * c * width * (amplitude * math.sin(math.pi * t / duration)) ** 2
+    assert el.half_sine_pulse_energy(rho=rho, c=c, width=width, amplitude=amplitude, duration=duration) == \
+        pytest.approx(quad(power, 0.0, duration)[0], rel=1e-12)

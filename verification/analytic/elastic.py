@@ -410,3 +410,31 @@ def s_wave_sine_velocity(t, *, distance, E, nu, rho, amplitude, frequency):
     delay = s_wave_arrival_time(distance=distance, E=E, nu=nu, rho=rho)
     return np.where(t >= delay, amplitude * np.sin(2.0 * np.pi * frequency * (t - delay)), 0.0)
 
+
+
+def half_sine_pulse_velocity(t, *, distance, c, amplitude, duration):
+    """Particle velocity at `distance` from where a half-sine velocity pulse of the given
+    amplitude and duration enters a one-dimensional elastic medium at speed c (no dispersion,
+    no reflection): amplitude sin(pi (t - distance / c) / duration) while
+    0 <= t - distance / c <= duration, zero before and after. With c = sqrt(M / rho) (M the
+    constrained modulus K + 4G/3) for a P wave in a laterally confined column, sqrt(G / rho) for
+    an S wave."""
+    if not (c > 0.0 and duration > 0.0):
+        raise ValueError("c and duration must be positive")
+    t = _arr(t)
+    local = (t - distance / c) / duration
+    return np.where((local >= 0.0) & (local <= 1.0), amplitude * np.sin(np.pi * np.clip(local, 0.0, 1.0)), 0.0)
+
+
+def constrained_wave_speed(*, E, nu, rho):
+    """c_p = sqrt((K + 4 G / 3) / rho) of a P wave in one-dimensional strain (a laterally
+    confined column), from Young's modulus and Poisson's ratio."""
+    E, nu = _check_young_poisson(E, nu)
+    return math.sqrt(E * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu)) / rho)
+
+
+def half_sine_pulse_energy(*, rho, c, width, amplitude, duration):
+    """Energy (J per metre out of plane) a half-sine velocity pulse carries through a section of
+    the given width of a one-dimensional medium: the power rho c v^2 per unit area integrated
+    over the pulse, rho c width amplitude^2 duration / 2."""
+    return rho * c * width * amplitude * amplitude * duration / 2.0
