@@ -39,7 +39,7 @@ class StateSaver {
   void save(const std::vector<T>& v) {
     (*this)(static_cast<std::uint64_t>(v.size()));
     if constexpr (std::is_trivially_copyable_v<T>) {
-      bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+      if (!v.empty()) bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
     } else {
       for (const T& item : v) (*this)(item);
     }
@@ -77,6 +77,7 @@ class StateLoader {
 
  private:
   void take(void* to, std::size_t n) {
+    if (n == 0) return;  // an empty vector's data() may be null, which memcpy must not get
     if (n > bytes_.size() - at_) throw StateFormatError("the state ends early");
     std::memcpy(to, bytes_.data() + at_, n);
     at_ += n;
