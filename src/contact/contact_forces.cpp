@@ -66,7 +66,7 @@ void addPointForce(Model& m, const BlockPoint& p, Vec2 f) {
 
 }  // namespace
 
-ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) {
+ContactStepTotals computeContactForces(Model& m, double dt, double motionClock, double beta) {
   ContactStepTotals totals;
   Blocks& bl = m.blocks;
   const double overlapLimit = 0.5 * m.roundingLength;
@@ -150,8 +150,17 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock) 
       c.closableAt = motionClock + 0.5 * (-c.elasticNormalStress / j.kn);
     }
 
+    // Stiffness-proportional damping (1.3.4.4): a viscous stress on the springs' elastic
+    // increments, applied with the force but not stored in the joint's stress; none while the
+    // shear spring slips (its increment is then plastic), none while the contact is open.
+    double fnViscous = 0.0, fsViscous = 0.0;
+    if (beta > 0.0 && !c.open && dt > 0.0) {
+      fnViscous = weight * beta * j.kn * dunStep / dt;
+      if (slip == 0.0) fsViscous = weight * beta * j.ks * dus / dt;
+      totals.viscousDissipation += fnViscous * dunStep + fsViscous * dus;
+    }
     // Force on A from B; the shear force resists A's motion along the tangent.
-    const Vec2 f = fn * hit.normal - fs * tangent;
+    const Vec2 f = (fn + fnViscous) * hit.normal - (fs + fsViscous) * tangent;
     if (pa.onGridpoints()) {
       addPointForce(m, pa, f);
     } else {

@@ -15,6 +15,7 @@ struct ContactStepTotals {
   double jointRelease = 0.0;
   double sumForceMagnitude = 0.0;   // over closed contacts, for the unbalanced-force ratio
   double slipDissipation = 0.0;     // by slip in the step, net of dilation (J/m)
+  double viscousDissipation = 0.0;  // by stiffness-proportional damping of the joints' springs (J/m)
   int closedContacts = 0;
   // The largest stress-dependent stiffness (continuously yielding law, Pa/m) of a closed contact
   // on a block that moves freely, and that contact's index (-1 when there is none).
@@ -30,6 +31,8 @@ struct ContactStepTotals {
 // contact whose gap is too wide to close before the clock reaches its closableAt is skipped:
 // it carries no force, and its joint state, kept in displacement differences, is brought up to
 // date whenever it is next evaluated (the shear displacement it records accrues only then).
-ContactStepTotals computeContactForces(Model& model, double dt, double motionClock);
+// beta > 0: stiffness-proportional damping, a viscous stress beta k du/dt on the elastic
+// increment of each closed contact's springs (normal and shear; shear dropped while it slips).
+ContactStepTotals computeContactForces(Model& model, double dt, double motionClock, double beta = 0.0);
 
 }  // namespace vdec

@@ -147,6 +147,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
               {"static_solve_residual", report.staticSolveResidual >= 0 ? nlohmann::json(report.staticSolveResidual) : nlohmann::json()},
               {"unbalanced_ratio", report.lastMonitors.unbalancedRatio},
               {"stage_seconds", profile}};
+  if (report.stiffnessDampingStepFactor != 1.0) j["run"]["stiffness_damping_step_factor"] = report.stiffnessDampingStepFactor;
   j["energy"] = {{"initial", report.energy.initial},
                  {"external_work", report.energy.externalWork},
                  {"kinetic", report.energy.kinetic},

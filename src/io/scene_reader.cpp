@@ -454,6 +454,25 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     }
     if (scene.settings.adaptiveDamping && t->has("mass_damping"))
       t->fail("mass_damping", "adaptive_damping sets the mass damping itself; give one or the other");
+    if (t->has("stiffness_damping") && t->has("rayleigh"))
+      t->fail("rayleigh", "sets the stiffness damping itself; give rayleigh or stiffness_damping, not both");
+    if (t->has("stiffness_damping")) scene.settings.stiffnessDamping = t->nonNegative("stiffness_damping", 0.0);
+    if (t->has("rayleigh")) {
+      if (t->has("mass_damping"))
+        t->fail("rayleigh", "sets the mass damping itself; give rayleigh, or mass_damping with stiffness_damping");
+      auto ray = t->subtable("rayleigh");
+      if (!ray) t->fail("rayleigh", "must be a table { ratio = XI, frequency = F }");
+      const double ratio = ray->number("ratio"), frequency = ray->positive("frequency");
+      if (!(ratio > 0.0 && ratio < 1.0)) ray->fail("ratio", "must be in (0, 1): the critical-damping ratio at the frequency");
+      ray->finish();
+      // xi(w) = (alpha / w + beta w) / 2 is smallest, xi, at w_min = 2 pi f (1.3-18, 1.3-19).
+      const double w = 2.0 * std::numbers::pi * frequency;
+      scene.settings.massDamping = ratio * w;
+      scene.settings.stiffnessDamping = ratio / w;
+    }
+    if (scene.settings.stiffnessDamping > 0.0 && (scene.settings.adaptiveDamping || t->has("local_damping")))
+      t->fail(t->has("rayleigh") ? "rayleigh" : "stiffness_damping",
+              "goes with mass damping (Rayleigh damping), not with adaptive or local damping");
     scene.settings.densityScaling = t->boolean("density_scaling", false);
     scene.settings.staticSolve = t->boolean("static_solve", false);
     t->finish();
@@ -629,6 +648,17 @@ Scene readScene(const std::string& path, const std::vector<std::string>& overrid
     }
     validateBlockPolygon(in.polygon, m.roundingLength, in.where);
     addBlock(m, in);
+  }
+  if (scene.settings.stiffnessDamping > 0.0) {
+    auto solver = top.subtable("solver");
+    const char* key = solver->has("rayleigh") ? "rayleigh" : "stiffness_damping";
+    for (int b = 0; b < m.blocks.size(); ++b)
+      if (m.blocks.deformable[b])
+        solver->fail(key, "acts on the joints between rigid blocks; block '" + m.blocks.name[b] +
+                              "' is deformable, and the zones' viscous stress is not implemented");
+    for (const JointMaterial& j : m.jointMaterials)
+      if (j.law == JointLaw::ContinuouslyYielding)
+        solver->fail(key, "damps linear joint springs; joint material '" + j.name + "' is continuously yielding");
   }
   // A weight beyond the range of a double would first show as a NaN energy, blamed on the step.
   for (int b = 0; b < m.blocks.size(); ++b)

@@ -111,6 +111,15 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   // it whenever the motion runs against the force): the step shrinks by that factor, so that the
   // estimates of 1.3-25 and 1.3-28 keep their margins.
   if (settings_.localDamping > 0.0) dt_ /= std::sqrt(1.0 + settings_.localDamping);
+  // Stiffness-proportional damping lowers the critical step of the stiffest joint mode from
+  // 2 / w to (2 / w) (sqrt(1 + xi^2) - xi), xi = beta w / 2 (Belytschko, after 1.3-22). The
+  // rigid-block step is FRAC times the undamped critical step, so w = 2 FRAC / dt.
+  if (settings_.stiffnessDamping > 0.0) {
+    const double w = 2.0 * settings_.frac / dtBlocks;
+    const double xi = 0.5 * settings_.stiffnessDamping * w;
+    stiffnessDampingStepFactor_ = std::sqrt(1.0 + xi * xi) - xi;
+    dt_ *= stiffnessDampingStepFactor_;
+  }
   // The step as a fraction of the critical step of the stiffest joint spring on the lightest
   // free block (kinematic tests, with every block driven, have no such mode).
   contactStepFraction_ = anyFreeRigid ? settings_.frac * dt_ / dtBlocks : 0.0;
@@ -205,11 +214,13 @@ void Cycle::buildStages() {
                          // As for the zones: before the first step no motion has happened
                          // for the initial velocities, v(-dt/2), to have displaced the joints.
                          const ContactStepTotals t =
-                             computeContactForces(model_, model_.cycle == 0 ? 0.0 : dt_, motionClock_);
+                             computeContactForces(model_, model_.cycle == 0 ? 0.0 : dt_, motionClock_,
+                                                  settings_.stiffnessDamping);
                          checkStiffnessGrowth(t);
                          detection_.requestRescan(t.passedCorners);
                          step_.strainEnergy += t.strainEnergy;
                          energy_.addDissipation(t.slipDissipation, t.jointRelease, 0.0);
+                         step_.dampingDissipation += t.viscousDissipation;
                          step_.forceScaleSum += t.sumForceMagnitude;
                          step_.forceCount += t.closedContacts;
                        }});
@@ -656,6 +667,7 @@ RunReport Cycle::run() {
   report.detectionScans = detection_.scans();
   report.staticSolveSeconds = staticSolveSeconds_;
   report.staticSolveResidual = staticSolveResidual_;
+  report.stiffnessDampingStepFactor = stiffnessDampingStepFactor_;
   report.wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
   return report;
 }

@@ -83,6 +83,7 @@ struct RunSettings {
   // has a margin); for stability studies.
   double zoneFraction = 1.0;
   double massDamping = 0.0;   // alpha of 1.3-21, 1/s
+  double stiffnessDamping = 0.0;  // beta of 1.3-22 on the joints' springs, s (Rayleigh with alpha)
   bool adaptiveDamping = false;  // alpha by the servo of 1.3-23 instead
   double localDamping = 0.0;     // alpha_L of local damping (motion_totals.hpp), instead of mass damping
   bool densityScaling = false;   // gridpoint inertial masses scaled to one step (1.3-32 to 1.3-34)
@@ -119,6 +120,7 @@ struct RunReport {
   // The direct solve's last right-hand side over the force scale: near round-off when it
   // converged; larger when joints slipped or opened during it (the cycles then finish the job).
   double staticSolveResidual = -1.0;
+  double stiffnessDampingStepFactor = 1.0;  // sqrt(1 + xi^2) - xi when stiffness damping is on
   double wallSeconds = 0.0;
   // Set when a numerical error stopped the run; the report then holds the state up to it.
   std::string error;
@@ -145,7 +147,8 @@ class Cycle {
     a(dt_), a(contactStepFraction_), a(stepStiffness_), a(largestStepDisplacement_), a(motionClock_);
     a(meanContactForce_), a(largestUnbalanced_), a(step_), a(reversing_), a(alpha_), a(servoPower_), a(servoRate_);
     a(staticSolveSeconds_), a(staticSolveResidual_), a(energy_), a(monitors_), a(histories_);
-    a(settings_.adaptiveDamping), a(settings_.massDamping), a(donePhases_), a(densityStep_), a(historySpecs_);
+    a(settings_.adaptiveDamping), a(settings_.massDamping), a(donePhases_), a(densityStep_), a(historySpecs_),
+      a(stiffnessDampingStepFactor_);
     detection_.visitState(a);
   }
   double massDamping() const { return alpha_; }
@@ -202,6 +205,7 @@ class Cycle {
   } reversing_;
   double alpha_ = 0.0;                       // mass damping in use, 1/s
   double densityStep_ = 0.0;                 // the step density scaling formed the masses for
+  double stiffnessDampingStepFactor_ = 1.0;
   double servoPower_ = 0.0, servoRate_ = 0.0;
   double staticSolveSeconds_ = -1.0;
   double staticSolveResidual_ = -1.0;

@@ -417,3 +417,23 @@ def test_rigid_block_time_step():
     # the stability sweep's block (l_typ = 3 m): critical FRAC = 0.5284323797 * sqrt(3) = 0.9152717
     assert rb.critical_frac(width=1.0, height=1.0, density=2500.0, kn=1e8, ks=1e8, typical_length=3.0) == \
         pytest.approx(0.9152717, rel=1e-7)
+
+
+@pytest.mark.requirements("REQ-MOTION-008")
+def test_rayleigh_damping_closed_forms():
+    # m = 2500, kn L = 1e8: w = 200 rad/s. alpha = 10, beta = 2.5e-4: xi = 10/400 + 2.5e-4*200/2 = 0.05
+    assert rb.rayleigh_damping_ratio(alpha=10.0, beta=2.5e-4, mass=2500.0, kn=1e8, contact_length=1.0) == \
+        pytest.approx(0.05, rel=1e-14)
+    # w = 400: 10/800 + 2.5e-4*400/2 = 0.0125 + 0.05 = 0.0625
+    assert rb.rayleigh_damping_ratio(alpha=10.0, beta=2.5e-4, mass=2500.0, kn=4e8, contact_length=1.0) == \
+        pytest.approx(0.0625, rel=1e-14)
+    assert rb.rayleigh_log_decrement(alpha=10.0, beta=2.5e-4, mass=2500.0, kn=1e8, contact_length=1.0) == \
+        pytest.approx(2.0 * math.pi * 0.05 / math.sqrt(1.0 - 0.0025), rel=1e-14)
+    # alpha = 0 reduces to the mass-damping decrement's form with xi = beta w / 2
+    assert rb.rayleigh_log_decrement(alpha=40.0, beta=0.0, mass=2500.0, kn=1e8, contact_length=1.0) == \
+        pytest.approx(rb.log_decrement(alpha=40.0, mass=2500.0, kn=1e8, contact_length=1.0), rel=1e-14)
+    # xi_s = 2.5e-4 * 400 / 2 = 0.05: sqrt(1.0025) - 0.05
+    assert rb.stiffness_damping_step_factor(beta=2.5e-4, mass=2500.0, kn=4e8, contact_length=1.0) == \
+        pytest.approx(math.sqrt(1.0025) - 0.05, rel=1e-14)
+    with pytest.raises(ValueError):
+        rb.rayleigh_log_decrement(alpha=1e4, beta=0.0, mass=2500.0, kn=1e8, contact_length=1.0)

@@ -155,6 +155,31 @@ def log_decrement(*, alpha, mass, kn, contact_length):
     return 2.0 * math.pi * xi / math.sqrt(1.0 - xi * xi)
 
 
+def rayleigh_damping_ratio(*, alpha, beta, mass, kn, contact_length):
+    """Critical-damping ratio of the block's oscillation on its joint under Rayleigh damping:
+    xi = alpha / (2 w) + beta w / 2 (1.3-18; Chopra, Dynamics of Structures, 11.4), with
+    w = sqrt(kn L / m) the undamped frequency."""
+    w = oscillator_frequency(mass=mass, kn=kn, contact_length=contact_length)
+    return alpha / (2.0 * w) + beta * w / 2.0
+
+
+def rayleigh_log_decrement(*, alpha, beta, mass, kn, contact_length):
+    """Logarithmic decrement 2 pi xi / sqrt(1 - xi^2) with xi = rayleigh_damping_ratio."""
+    xi = rayleigh_damping_ratio(alpha=alpha, beta=beta, mass=mass, kn=kn, contact_length=contact_length)
+    if not 0.0 <= xi < 1.0:
+        raise ValueError(f"damping ratio {xi}: the decrement needs 0 <= xi < 1 (underdamped)")
+    return 2.0 * math.pi * xi / math.sqrt(1.0 - xi * xi)
+
+
+def stiffness_damping_step_factor(*, beta, mass, kn, contact_length):
+    """The factor by which stiffness-proportional damping beta lowers the critical step of
+    central differences for a mode of frequency w = sqrt(kn L / m): sqrt(1 + xi^2) - xi with
+    xi = beta w / 2 (Belytschko, Liu and Moran, Nonlinear Finite Elements, 6.2; the time-step
+    note after 1.3-22)."""
+    xi = 0.5 * beta * oscillator_frequency(mass=mass, kn=kn, contact_length=contact_length)
+    return math.sqrt(1.0 + xi * xi) - xi
+
+
 # ---------------------------------------------------------------- the central-difference scheme itself
 
 

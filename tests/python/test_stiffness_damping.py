@@ -1,0 +1,63 @@
+"""Stiffness-proportional and Rayleigh damping: the scene keys, their errors, the step factor
+(docs/models/rigid-block-motion.md#stiffness-proportional-and-rayleigh-damping)."""
+import json
+import math
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+VDEC = os.environ.get("VDEC_EXECUTABLE", str(ROOT / "build" / "vdec"))
+pytestmark = pytest.mark.skipif(not Path(VDEC).is_file(), reason="vdec is not built")
+REQ = pytest.mark.requirements("REQ-MOTION-008")
+SCENE = (ROOT / "verification" / "problems" / "RB-RAYLEIGH" / "scene.toml").read_text()
+
+
+def run(tmp_path, text, *sets):
+    scene = tmp_path / "scene.toml"
+    scene.write_text(text)
+    args = [VDEC, "run", str(scene), "--out", str(tmp_path / "out")]
+    for s in sets:
+        args += ["--set", s]
+    done = subprocess.run(args, capture_output=True, text=True, timeout=120)
+    results = tmp_path / "out" / "results.json"
+    return done, json.loads(results.read_text()) if results.is_file() else None
+
+
+@REQ
+def test_rayleigh_sets_alpha_and_beta_and_reduces_the_step(tmp_path):
+    done, results = run(tmp_path, SCENE, "stop.time=0.01")
+    assert done.returncode == 0, done.stderr
+    # w_min = 200 rad/s, beta = 0.05 / 200; the block's mode w = sqrt(1e8 * 1 / 2500) = 200
+    xi = 0.5 * (0.05 / 200.0) * 200.0
+    assert results["run"]["stiffness_damping_step_factor"] == pytest.approx(math.sqrt(1 + xi * xi) - xi, rel=1e-12)
+    # FRAC 0.05 times the undamped critical step 2 / w = 0.01 s, times the factor
+    assert results["run"]["dt"] == pytest.approx(0.05 * 0.01 * results["run"]["stiffness_damping_step_factor"], rel=1e-12)
+    assert results["energy"]["damping_dissipation"] > 0.0
+
+
+@REQ
+@pytest.mark.parametrize("sets, message", [
+    (["solver.stiffness_damping=1e-4"], "key 'solver.rayleigh': sets the stiffness damping itself; give rayleigh or stiffness_damping, not both"),
+    (["solver.mass_damping=5.0"], "key 'solver.rayleigh': sets the mass damping itself"),
+    (["solver.rayleigh.ratio=1.5"], "key 'solver.rayleigh.ratio': must be in (0, 1)"),
+    (["solver.rayleigh.frequency=-1.0"], "solver.rayleigh.frequency"),
+    (["solver.adaptive_damping=true"], "key 'solver.rayleigh': goes with mass damping (Rayleigh damping), not with adaptive or local damping"),
+])
+def test_rayleigh_damping_scene_errors(tmp_path, sets, message):
+    done, results = run(tmp_path, SCENE, *sets)
+    assert done.returncode == 3, done.stderr
+    if message:
+        assert message in done.stderr, done.stderr
+    assert results is None
+
+
+@REQ
+def test_stiffness_damping_needs_rigid_blocks(tmp_path):
+    scene = (ROOT / "verification" / "problems" / "DB-JOINT-STACK" / "scene.toml").read_text()
+    scene = scene.replace("adaptive_damping = true", "stiffness_damping = 1e-4")
+    done, _ = run(tmp_path, scene)
+    assert done.returncode == 3
+    assert "key 'solver.stiffness_damping': acts on the joints between rigid blocks; block 'lower' is deformable" in done.stderr
