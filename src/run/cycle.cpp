@@ -110,7 +110,6 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   // 2 / sqrt(1 + alpha_L) (the damping force, a fraction of the out-of-balance force, acts with
   // it whenever the motion runs against the force): the step shrinks by that factor, so that the
   // estimates of 1.3-25 and 1.3-28 keep their margins.
-  if (settings_.localDamping > 0.0) dt_ /= std::sqrt(1.0 + settings_.localDamping);
   // Stiffness-proportional damping lowers the critical step of the stiffest joint mode from
   // 2 / w to (2 / w) (sqrt(1 + xi^2) - xi), xi = beta w / 2 (Belytschko, after 1.3-22). The
   // rigid-block step is FRAC times the undamped critical step, so w = 2 FRAC / dt.
@@ -118,23 +117,18 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     const double w = 2.0 * settings_.frac / dtBlocks;
     const double xi = 0.5 * settings_.stiffnessDamping * w;
     stiffnessDampingStepFactor_ = std::sqrt(1.0 + xi * xi) - xi;
-    dt_ *= stiffnessDampingStepFactor_;
   }
+  dt_ *= dampedStepFactor();
   // The step as a fraction of the critical step of the stiffest joint spring on the lightest
   // free block (kinematic tests, with every block driven, have no such mode).
   contactStepFraction_ = anyFreeRigid ? settings_.frac * dt_ / dtBlocks : 0.0;
   for (const JointMaterial& j : model_.jointMaterials)
     if (j.law != JointLaw::PointContact) stepStiffness_ = std::max({stepStiffness_, j.kn, j.ks});
   alpha_ = settings_.adaptiveDamping ? kAdaptiveStart / dt_ : settings_.massDamping;
-  checkDamping("solver.mass_damping");
+  checkDamping(alpha_, "solver.mass_damping");
   // Each phase's mass damping against the step, before the first step rather than when it starts.
   for (const Phase& phase : settings_.phases)
-    if (phase.changes.massDamping && !(*phase.changes.massDamping * dt_ <= 2.0)) {
-      const double kept = alpha_;
-      alpha_ = *phase.changes.massDamping;
-      checkDamping("phase '" + phase.name + "': mass_damping");
-      alpha_ = kept;
-    }
+    if (phase.changes.massDamping) checkDamping(*phase.changes.massDamping, "phase '" + phase.name + "': mass_damping");
 
   // Driven velocities as the run starts, f(0) times the input, which the first history sample
   // shows; every step then sets them to f(t + dt/2).
@@ -184,12 +178,16 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   buildStages();
 }
 
-void Cycle::checkDamping(const std::string& where) const {
+double Cycle::dampedStepFactor() const {
+  return stiffnessDampingStepFactor_ / (settings_.localDamping > 0.0 ? std::sqrt(1.0 + settings_.localDamping) : 1.0);
+}
+
+void Cycle::checkDamping(double alpha, const std::string& where) const {
   // 1.3-21 multiplies v(t - dt/2) by (1 - alpha dt/2) / (1 + alpha dt/2): past alpha dt = 2 that
   // factor turns negative and every step reverses the motion instead of damping it.
-  if (alpha_ * dt_ <= 2.0) return;
+  if (alpha * dt_ <= 2.0) return;
   std::ostringstream s;
-  s << where << " = " << alpha_ << " 1/s times the time step " << dt_ << " s is " << alpha_ * dt_
+  s << where << " = " << alpha << " 1/s times the time step " << dt_ << " s is " << alpha * dt_
     << ": above 2 the damping term of 1.3-21 reverses the velocities every step instead of damping them; give "
     << "at most " << 2.0 / dt_ << " 1/s (critical damping of a mode of frequency w is alpha = 2 w)";
   throw SceneError(s.str());
@@ -470,14 +468,10 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
       bl.angularVelocity[b] = 0.0;
     }
     for (int i = 0; i < g.size(); ++i) {
-      if (g.driven[i] & DriveX) continue;
-      removed += 0.5 * g.mass[i] * g.velocity[i].x * g.velocity[i].x;
-      g.velocity[i].x = 0.0;
-    }
-    for (int i = 0; i < g.size(); ++i) {
-      if (g.driven[i] & DriveY) continue;
-      removed += 0.5 * g.mass[i] * g.velocity[i].y * g.velocity[i].y;
-      g.velocity[i].y = 0.0;
+      Vec2& v = g.velocity[i];
+      const Vec2 kept{(g.driven[i] & DriveX) ? v.x : 0.0, (g.driven[i] & DriveY) ? v.y : 0.0};
+      removed += 0.5 * g.mass[i] * (dot(v, v) - dot(kept, kept));
+      v = kept;
     }
     energy_.withdraw(removed);
   }
@@ -529,7 +523,7 @@ void Cycle::changeRigidBlocks(const std::vector<RigidBlockChange>& changes) {
   // A released block may be lighter than those the rigid-block step was formed from: form it again
   // over the blocks now free; the step may only shrink.
   const double dtBlocks = rigidBlockTimeStep(model_, settings_.frac);
-  dt_ = std::min(dt_, dtBlocks / (settings_.localDamping > 0.0 ? std::sqrt(1.0 + settings_.localDamping) : 1.0));
+  dt_ = std::min(dt_, dtBlocks * dampedStepFactor());
   contactStepFraction_ = settings_.frac * dt_ / dtBlocks;
 }
 
@@ -552,8 +546,7 @@ void Cycle::excavate(const ExcavationRegion& region) {
       if (!(g.driven[i] & Excavated)) g.mass[i] = 0.25 * g.stiffness[i] * densityStep_ * densityStep_;
   } else if (model_.zones.size() > 0) {
     // A gridpoint that lost zones may have lost more mass than stiffness: the step may only shrink.
-    dt_ = std::min(dt_, settings_.zoneFraction * zoneTimeStep(model_) /
-                            (settings_.localDamping > 0.0 ? std::sqrt(1.0 + settings_.localDamping) : 1.0));
+    dt_ = std::min(dt_, settings_.zoneFraction * zoneTimeStep(model_) * dampedStepFactor());
   }
 }
 
@@ -610,16 +603,15 @@ RunReport Cycle::run() {
     } else {
       for (std::size_t k = firstPhase_; k < settings_.phases.size(); ++k) {
         const Phase& phase = settings_.phases[k];
-        const auto phaseStart = Clock::now();
+        phaseStart_ = Clock::now();
         PhaseReport& done = report.phases.emplace_back();
-        phaseStart_ = phaseStart;
         done.name = phase.name;
         done.startCycle = model_.cycle;
         done.startTime = model_.time;
         beginPhase(phase.changes);
-        checkDamping("phase '" + phase.name + "': mass_damping");
+        checkDamping(alpha_, "phase '" + phase.name + "': mass_damping");
         stepUntil(phase.stop, done.stopReason);
-        closePhase(done, phaseStart);
+        closePhase(done, phaseStart_);
         report.stopReason = done.stopReason;
         if (done.stopReason == "interrupted") break;
         if (phase.requireEquilibrium && done.stopReason != "ratio") {

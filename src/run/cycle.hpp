@@ -174,7 +174,9 @@ class Cycle {
   bool stopReached(const StopCriteria& s, long long startCycle, double startTime, std::string& reason) const;
   void stepUntil(const StopCriteria& stop, std::string& reason);
   void beginPhase(const PhaseChanges& changes);
-  void checkDamping(const std::string& where) const;
+  void checkDamping(double alpha, const std::string& where) const;
+  // What local and stiffness-proportional damping make of a step formed without them.
+  double dampedStepFactor() const;
   void excavate(const ExcavationRegion& region);
   void changeRigidBlocks(const std::vector<RigidBlockChange>& changes);
   void closePhase(PhaseReport& done, std::chrono::steady_clock::time_point started) const;

@@ -136,6 +136,14 @@ stop = { cycles = 10 }
     ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\n[[phase.joint_material]]\nname = \"j\"\nkn = 5.0\n", "phase[0].joint_material[0].kn"),
     ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\nfriction = 5.0\n", "phase[0].friction"),
     ("[[phase]]\nname = \"a\"\nstop = { cycles = 5 }\nmass_damping = 1e9\n", "phase 'a': mass_damping = 1e+09 1/s times the time step"),
+    ('[[phase]]\nname = "a"\nstop = { cycles = 5 }\n[[phase.block]]\nname = "top"\n', "[phase[0].block[0]]: changes nothing"),
+    ('[[phase]]\nname = "a"\nstop = { cycles = 5 }\n[[phase.block]]\nname = "top"\nfix = ["x"]\nfree = ["x"]\n', "key 'phase[0].block[0].free': a degree of freedom is both fixed and freed"),
+    ('[[phase]]\nname = "a"\nstop = { cycles = 5 }\n[[phase.block]]\nname = "top"\nvelocity = [1.0, 0.0]\n', "key 'phase[0].block[0].velocity': drives the components given in fix"),
+    ('[[phase]]\nname = "a"\nstop = { cycles = 5 }\n[[phase.block]]\nname = "top"\nfix = ["z"]\n', "key 'phase[0].block[0].fix': unknown degree of freedom 'z'"),
+    ('[[phase]]\nname = "a"\nstop = { cycles = 5 }\n[[phase.block]]\nname = "nonesuch"\nfree = ["x"]\n', "phase[0].block[0].name"),
+    ('[[phase]]\nname = "a"\nstop = { cycles = 5 }\n[[phase.block_material]]\nname = "rock"\n', "[phase[0].block_material[0]]: changes nothing"),
+    ('[[phase]]\nname = "a"\nstop = { cycles = 5 }\n[[phase.block_material]]\nname = "stone"\nfriction = 30.0\ncohesion = 1.0\n', "key 'phase[0].block_material[0].name': no block material named 'stone'"),
+    ('[[phase]]\nname = "a"\nstop = { cycles = 5 }\n[[phase.block_material]]\nname = "rock"\nfriction = 30.0\ncohesion = 1.0\n', "key 'phase[0].block_material[0].friction': Mohr-Coulomb plasticity needs the elastic constants too"),
 ])
 def test_bad_phase_tables_are_scene_errors_naming_the_key(tmp_path, extra, message):
     done, results = run(tmp_path, BLOCKS + extra)
@@ -236,20 +244,6 @@ velocity = [-0.5, 0.0]
 
 
 @REQ
-@pytest.mark.parametrize("extra, message", [
-    ('[[phase.block]]\nname = "top"\n', "[phase[0].block[0]]: changes nothing"),
-    ('[[phase.block]]\nname = "top"\nfix = ["x"]\nfree = ["x"]\n', "key 'phase[0].block[0].free': a degree of freedom is both fixed and freed"),
-    ('[[phase.block]]\nname = "top"\nvelocity = [1.0, 0.0]\n', "key 'phase[0].block[0].velocity': drives the components given in fix"),
-    ('[[phase.block]]\nname = "top"\nfix = ["z"]\n', "key 'phase[0].block[0].fix': unknown degree of freedom 'z'"),
-    ('[[phase.block]]\nname = "nonesuch"\nfree = ["x"]\n', "phase[0].block[0].name"),
-])
-def test_bad_phase_block_tables_are_scene_errors(tmp_path, extra, message):
-    done, _ = run(tmp_path, BLOCKS + '[[phase]]\nname = "a"\nstop = { cycles = 5 }\n' + extra)
-    assert done.returncode == 3, done.stderr
-    assert message in done.stderr, done.stderr
-
-
-@REQ
 def test_a_strength_reduction_in_a_phase_yields_the_rock_to_the_closed_form(tmp_path):
     # RUN-GROUND-REACTION's tunnel with rock too strong to yield (c = 100 MPa), unloaded to p_i = 0
     # (elastic), then weakened to c = 3.45 MPa in a phase of its own: the wall moves on to
@@ -282,18 +276,6 @@ cohesion = 3.45e6
     h = results["histories"]["wall_ur"]
     elastic = [v for t, v in zip(h["t"], h["value"]) if t <= unloaded["start_time"] + unloaded["time"]][-1]
     assert abs(elastic) < 0.5 * abs(closed)  # before the weakening the rock had not yielded
-
-
-@REQ
-@pytest.mark.parametrize("extra, message", [
-    ('[[phase.block_material]]\nname = "rock"\n', "[phase[0].block_material[0]]: changes nothing"),
-    ('[[phase.block_material]]\nname = "stone"\nfriction = 30.0\ncohesion = 1.0\n', "key 'phase[0].block_material[0].name': no block material named 'stone'"),
-    ('[[phase.block_material]]\nname = "rock"\nfriction = 30.0\ncohesion = 1.0\n', "key 'phase[0].block_material[0].friction': Mohr-Coulomb plasticity needs the elastic constants too"),
-])
-def test_bad_phase_block_material_tables_are_scene_errors(tmp_path, extra, message):
-    done, _ = run(tmp_path, BLOCKS + '[[phase]]\nname = "a"\nstop = { cycles = 5 }\n' + extra)
-    assert done.returncode == 3, done.stderr
-    assert message in done.stderr, done.stderr
 
 
 @REQ
