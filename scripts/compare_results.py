@@ -17,7 +17,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 VOLATILE = {("environment",), ("software", "git_commit"), ("run", "wall_seconds"), ("run", "setup_seconds"),
-            ("run", "stage_seconds"), ("run", "static_solve_seconds"), ("run", "threads")}
+            ("run", "stage_seconds"), ("run", "static_solve_seconds"), ("run", "threads"),
+            ("phases", "wall_seconds")}
 
 
 def cases(problems, text_filter):
@@ -36,6 +37,8 @@ def strip(value, path=()):
         return None
     if isinstance(value, dict):
         return {k: strip(v, path + (k,)) for k, v in value.items() if path + (k,) not in VOLATILE}
+    if isinstance(value, list):  # the entries of a list share their parent's path (each phase's wall time)
+        return [strip(v, path) for v in value]
     return value
 
 

@@ -118,7 +118,7 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     const double xi = 0.5 * settings_.stiffnessDamping * w;
     stiffnessDampingStepFactor_ = std::sqrt(1.0 + xi * xi) - xi;
   }
-  dt_ *= dampedStepFactor();
+  dt_ = dampedStep(dt_);
   // The step as a fraction of the critical step of the stiffest joint spring on the lightest
   // free block (kinematic tests, with every block driven, have no such mode).
   contactStepFraction_ = anyFreeRigid ? settings_.frac * dt_ / dtBlocks : 0.0;
@@ -178,8 +178,9 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   buildStages();
 }
 
-double Cycle::dampedStepFactor() const {
-  return stiffnessDampingStepFactor_ / (settings_.localDamping > 0.0 ? std::sqrt(1.0 + settings_.localDamping) : 1.0);
+double Cycle::dampedStep(double step) const {
+  if (settings_.localDamping > 0.0) step /= std::sqrt(1.0 + settings_.localDamping);
+  return step * stiffnessDampingStepFactor_;
 }
 
 void Cycle::checkDamping(double alpha, const std::string& where) const {
@@ -523,7 +524,7 @@ void Cycle::changeRigidBlocks(const std::vector<RigidBlockChange>& changes) {
   // A released block may be lighter than those the rigid-block step was formed from: form it again
   // over the blocks now free; the step may only shrink.
   const double dtBlocks = rigidBlockTimeStep(model_, settings_.frac);
-  dt_ = std::min(dt_, dtBlocks * dampedStepFactor());
+  dt_ = std::min(dt_, dampedStep(dtBlocks));
   contactStepFraction_ = settings_.frac * dt_ / dtBlocks;
 }
 
@@ -546,7 +547,7 @@ void Cycle::excavate(const ExcavationRegion& region) {
       if (!(g.driven[i] & Excavated)) g.mass[i] = 0.25 * g.stiffness[i] * densityStep_ * densityStep_;
   } else if (model_.zones.size() > 0) {
     // A gridpoint that lost zones may have lost more mass than stiffness: the step may only shrink.
-    dt_ = std::min(dt_, settings_.zoneFraction * zoneTimeStep(model_) * dampedStepFactor());
+    dt_ = std::min(dt_, dampedStep(settings_.zoneFraction * zoneTimeStep(model_)));
   }
 }
 

@@ -175,8 +175,8 @@ class Cycle {
   void stepUntil(const StopCriteria& stop, std::string& reason);
   void beginPhase(const PhaseChanges& changes);
   void checkDamping(double alpha, const std::string& where) const;
-  // What local and stiffness-proportional damping make of a step formed without them.
-  double dampedStepFactor() const;
+  // A step formed without damping, reduced for local and stiffness-proportional damping.
+  double dampedStep(double step) const;
   void excavate(const ExcavationRegion& region);
   void changeRigidBlocks(const std::vector<RigidBlockChange>& changes);
   void closePhase(PhaseReport& done, std::chrono::steady_clock::time_point started) const;
