@@ -4,12 +4,12 @@
 // zoning = { nx = n, ny = n }: n x n crossed cells, 4 n^2 constant-strain triangles (zones) and
 // (n + 1)^2 + n^2 gridpoints. The bottom edge is fixed in x and y, the top edge carries
 // syy = -1 MPa, and mass damping is 400 1/s (about twice the block's lowest angular frequency;
-// the value does not change the cost of a cycle). The scene is written as TOML to a temporary
-// file and read with vdec::readScene, so the benchmark runs the same model set-up as the vdec
-// executable. The cycle's stages are zone-forces, boundary-tractions and gridpoint-motion, then
+// the value does not change the cost of a cycle). The scene is defined in code and made by
+// vdec::buildScene, the builder the scene reader uses, so the benchmark runs the same model
+// set-up as the vdec executable. The cycle's stages are zone-forces, boundary-tractions and gridpoint-motion, then
 // the step's bookkeeping (energy sums, monitors, time).
 //
-// One change to the model as read: the free gridpoint components start with a slow rigid
+// One change to the model as built: the free gridpoint components start with a slow rigid
 // rotation about the block's centre (kSpin, at most 0.07 m/s), so that every zone is moving from
 // the first cycle. A zone whose spin is exactly zero skips the stress rotation, and the load of
 // the top edge alone reaches the lower rows only after its wave has crossed the block (about
@@ -35,19 +35,14 @@
 //   ns_<stage>_per_zone_cycle  that stage's time per zone-cycle
 #include <benchmark/benchmark.h>
 #include <omp.h>
-#include <unistd.h>
 
 #include <chrono>
-#include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 
 #include "run/cycle.hpp"
 #include "core/model.hpp"
-#include "io/scene_reader.hpp"
+#include "scene/scene_builder.hpp"
 
 namespace {
 
@@ -55,39 +50,43 @@ constexpr int kIterations = 3;
 constexpr double kSide = 10.0;  // m
 constexpr double kSpin = 0.01;  // rad/s, initial rigid rotation of the free gridpoint components
 
-std::string blockScene(int n) {
-  std::ostringstream s;
-  s << "title = \"benchmark elastic block " << n << " x " << n << " crossed cells\"\n"
-    << "[model]\ngravity = [0.0, 0.0]\nrounding = 0.01\n"
-    << "[solver]\nmass_damping = 400.0\n"
-    << "[stop]\ncycles = 1\n"
-    << "[[block_material]]\nname = \"rock\"\ndensity = 2500.0\nyoung = 10e9\npoisson = 0.25\n"
-    << "[[block]]\nname = \"block\"\nmaterial = \"rock\"\n"
-    << "vertices = [[0.0, 0.0], [" << kSide << ", 0.0], [" << kSide << ", " << kSide << "], [0.0, " << kSide << "]]\n"
-    << "zoning = { nx = " << n << ", ny = " << n << " }\n"
-    << "[[boundary]]\nblock = \"block\"\ny = [0.0, 0.0]\nfix = [\"x\", \"y\"]\n"
-    << "[[boundary]]\nblock = \"block\"\ny = [" << kSide << ", " << kSide << "]\nstress = [0.0, -1e6, 0.0]\n";
-  return s.str();
+vdec::Scene buildBlock(int n) {
+  vdec::SceneDefinition s;
+  s.title = "benchmark elastic block " + std::to_string(n) + " x " + std::to_string(n) + " crossed cells";
+  s.model.rounding = 0.01;
+  s.settings.massDamping = 400.0;
+  s.settings.stop.cycles = 1;
+  const double young = 10e9, poisson = 0.25;
+  vdec::BlockMaterial& rock = s.blockMaterials.emplace_back().material;
+  rock.name = "rock";
+  rock.density = 2500.0;
+  rock.bulk = young / (3.0 * (1.0 - 2.0 * poisson));
+  rock.shear = young / (2.0 * (1.0 + poisson));
+  vdec::BlockDefinition& block = s.blocks.emplace_back();
+  block.name = "block";
+  block.material = "rock";
+  block.vertices = {{0.0, 0.0}, {kSide, 0.0}, {kSide, kSide}, {0.0, kSide}};
+  block.zoning.kind = vdec::ZoningDefinition::Kind::Structured;
+  block.zoning.nx = block.zoning.ny = n;
+  vdec::BoundaryDefinition& base = s.boundaries.emplace_back();
+  base.block = "block";
+  base.y = {0.0, 0.0};
+  base.fix = vdec::DriveX | vdec::DriveY;
+  vdec::BoundaryDefinition& top = s.boundaries.emplace_back();
+  top.block = "block";
+  top.y = {kSide, kSide};
+  top.loaded = true;
+  top.stress = {0.0, -1e6, 0.0};
+  return vdec::buildScene(std::move(s));
 }
 
-// The scene of each size is read once and shared by its thread counts (reading the 1e6-zone
+// The scene of each size is built once and shared by its thread counts (building the 1e6-zone
 // block takes seconds: mesh generation, boundary edges, mesh quality).
-const vdec::Scene& readBlock(int n) {
+const vdec::Scene& sceneOfSize(int n) {
   static std::map<int, vdec::Scene> scenes;
   if (auto it = scenes.find(n); it != scenes.end()) return it->second;
   scenes.clear();  // one size at a time: the 1e6-zone model is about 150 MB
-  const std::filesystem::path path = std::filesystem::temp_directory_path() /
-      ("vdec_bench_zones_" + std::to_string(n) + "_" + std::to_string(getpid()) + ".toml");
-  {
-    std::ofstream out(path, std::ios::binary);
-    out << blockScene(n);
-    if (!out) throw std::runtime_error("cannot write " + path.string());
-  }
-  struct Remove {
-    std::filesystem::path p;
-    ~Remove() { std::filesystem::remove(p); }
-  } remove{path};
-  return scenes.emplace(n, vdec::readScene(path.string())).first->second;
+  return scenes.emplace(n, buildBlock(n)).first->second;
 }
 
 void RunBlock(benchmark::State& state) {
@@ -95,7 +94,7 @@ void RunBlock(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(1));
   const long long cycles = state.range(2);
   const long long warmup = std::max<long long>(10, cycles / 10);
-  const vdec::Scene& scene = readBlock(n);
+  const vdec::Scene& scene = sceneOfSize(n);
 
   const int previousThreads = omp_get_max_threads();
   omp_set_num_threads(threads);

@@ -3,10 +3,10 @@
 // Each lattice is columns x rows blocks of 1 m x 1 m (density 2500 kg/m^3), stacked in a plain
 // grid (no bond), touching, on a fixed base block 1 m thick spanning the width; Coulomb-slip joints
 // kn = ks = 1e9 Pa/m, friction 30 deg, rounding 0.01 m, gravity -9.81 m/s^2, no damping. The scene
-// is written as TOML to a temporary file and read with vdec::readScene, so the benchmark runs the
-// same model set-up as the vdec executable.
+// is defined in code and made by vdec::buildScene, the builder the scene reader uses, so the
+// benchmark runs the same model set-up as the vdec executable.
 //
-// Every iteration starts from the scene as read, constructs a vdec::Cycle, lets it settle for
+// Every iteration starts from the scene as built, constructs a vdec::Cycle, lets it settle for
 // kSettleCycles cycles (contacts formed, buffers grown, caches warm; not timed) and then times a
 // fixed number of further cycles of the same Cycle (manual time: only that Cycle::run() call), so
 // each iteration does exactly the same work.
@@ -22,59 +22,55 @@
 //   share_<stage>         that stage's fraction of the profiled step time (RunSettings::profile)
 //   ns_<stage>_per_cycle  that stage's time per cycle
 #include <benchmark/benchmark.h>
-#include <unistd.h>
 
 #include <chrono>
-#include <filesystem>
-#include <fstream>
+#include <cmath>
 #include <map>
 #include <optional>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 
 #include "run/cycle.hpp"
 #include "core/model.hpp"
 #include "io/build_info.hpp"
-#include "io/scene_reader.hpp"
+#include "scene/scene_builder.hpp"
 
 namespace {
 
 constexpr long long kSettleCycles = 200;
 constexpr int kIterations = 5;
 
-std::string latticeScene(int columns, int rows) {
-  std::ostringstream s;
-  s << "title = \"benchmark lattice " << columns << " x " << rows << "\"\n"
-    << "[model]\ngravity = [0.0, -9.81]\nrounding = 0.01\n"
-    << "[solver]\nfrac = 0.1\n"
-    << "[stop]\ncycles = " << kSettleCycles << "\n"
-    << "[[block_material]]\nname = \"rock\"\ndensity = 2500.0\n"
-    << "[[joint_material]]\nname = \"joint\"\nlaw = \"coulomb-slip\"\nkn = 1e9\nks = 1e9\nfriction = 30.0\n"
-    << "[[block]]\nname = \"base\"\nmaterial = \"rock\"\n"
-    << "vertices = [[0.0, -1.0], [" << columns << ".0, -1.0], [" << columns << ".0, 0.0], [0.0, 0.0]]\n"
-    << "fix = [\"x\", \"y\", \"rotation\"]\n";
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < columns; ++c)
-      s << "[[block]]\nname = \"b" << c << "_" << r << "\"\nmaterial = \"rock\"\nvertices = [[" << c << ".0, " << r
-        << ".0], [" << c + 1 << ".0, " << r << ".0], [" << c + 1 << ".0, " << r + 1 << ".0], [" << c << ".0, "
-        << r + 1 << ".0]]\n";
-  return s.str();
+vdec::BlockDefinition square(const std::string& name, vdec::Vec2 low, vdec::Vec2 high) {
+  vdec::BlockDefinition b;
+  b.name = name;
+  b.material = "rock";
+  b.vertices = {low, {high.x, low.y}, high, {low.x, high.y}};
+  b.origin.prefix = "block '" + name + "'";
+  return b;
 }
 
-vdec::Scene readLattice(int columns, int rows) {
-  const std::filesystem::path path = std::filesystem::temp_directory_path() /
-      ("vdec_bench_" + std::to_string(columns) + "x" + std::to_string(rows) + "_" + std::to_string(getpid()) + ".toml");
-  {
-    std::ofstream out(path, std::ios::binary);
-    out << latticeScene(columns, rows);
-    if (!out) throw std::runtime_error("cannot write " + path.string());
-  }
-  struct Remove {
-    std::filesystem::path p;
-    ~Remove() { std::filesystem::remove(p); }
-  } remove{path};
-  return vdec::readScene(path.string());
+vdec::Scene buildLattice(int columns, int rows) {
+  vdec::SceneDefinition s;
+  s.title = "benchmark lattice " + std::to_string(columns) + " x " + std::to_string(rows);
+  s.model.gravity = {0.0, -9.81};
+  s.model.rounding = 0.01;
+  s.settings.frac = 0.1;
+  s.settings.stop.cycles = kSettleCycles;
+  vdec::BlockMaterial& rock = s.blockMaterials.emplace_back().material;
+  rock.name = "rock";
+  rock.density = 2500.0;
+  vdec::JointMaterial joint;
+  joint.name = "joint";
+  joint.law = vdec::JointLaw::CoulombSlip;
+  joint.kn = joint.ks = 1e9;
+  joint.tanFriction = std::tan(vdec::radians(30.0));
+  s.jointMaterials.push_back({joint, {}});
+  s.blocks.push_back(square("base", {0.0, -1.0}, {static_cast<double>(columns), 0.0}));
+  s.blocks.back().fix = vdec::DriveAll;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c)
+      s.blocks.push_back(square("b" + std::to_string(c) + "_" + std::to_string(r), {static_cast<double>(c), 1.0 * r},
+                                {c + 1.0, r + 1.0}));
+  return vdec::buildScene(std::move(s));
 }
 
 int closedContacts(const vdec::Model& m) {
@@ -87,7 +83,7 @@ void RunLattice(benchmark::State& state) {
   const int columns = static_cast<int>(state.range(0)), rows = static_cast<int>(state.range(1));
   const long long blocks = static_cast<long long>(columns) * rows;
   const long long cycles = state.range(2);
-  const vdec::Scene scene = readLattice(columns, rows);
+  const vdec::Scene scene = buildLattice(columns, rows);
 
   vdec::Model model;
   std::optional<vdec::Cycle> cycle;

@@ -1,6 +1,7 @@
 #pragma once
 // A plain 2D vector: the only geometric type the solver needs.
 #include <cmath>
+#include <numbers>
 
 namespace vdec {
 
@@ -26,5 +27,6 @@ constexpr Vec2 perp(Vec2 a) { return {-a.y, a.x}; }
 inline double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 inline Vec2 normalized(Vec2 a) { return (1.0 / norm(a)) * a; }
 inline Vec2 rotated(Vec2 a, double c, double s) { return {c * a.x - s * a.y, s * a.x + c * a.y}; }
+inline double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 
 }  // namespace vdec

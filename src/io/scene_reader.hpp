@@ -1,35 +1,21 @@
 #pragma once
-// Reads a scene file (TOML) into a Model and its run settings. Every error names the file, the
-// line and the key. docs/user-manual/scene-format.md documents every key.
-#include <cstddef>
+// Reads a scene file (TOML) into its definitions (scene/scene_definition.hpp), one file per
+// section (io/scene_sections.hpp), and builds the model from them (scene/scene_builder.hpp).
+// Every error names the file, the line and the key. docs/user-manual/scene-format.md documents
+// every key.
 #include <string>
 #include <vector>
 
-#include "run/cycle.hpp"
-#include "run/history.hpp"
-#include "core/model.hpp"
+#include <toml++/toml.h>
+
+#include "scene/scene_builder.hpp"
+#include "scene/scene_definition.hpp"
 
 namespace vdec {
 
-struct Scene {
-  std::string title;
-  std::string path;
-  std::string sha256;                  // of the file's bytes
-  std::vector<std::string> overrides;  // --set key=value, applied after reading the file
-  // [k]: SHA-256 of the scene as parsed with only its first k [[phase]] tables (a restart's check)
-  std::vector<std::string> phasePrefixSha256;
-  Model model;
-  RunSettings settings;
-  std::vector<HistorySpec> histories;
-  std::vector<std::string> warnings;   // printed by the command line, kept in results.json
-};
-
-// Limits checked before the work they bound (docs/user-manual/scene-format.md#limits): the
-// blocks of a scene, with those cut from a region counted by estimateRegion before any cut
-// (measured: 100,000 blocks took 15 s and 3.5 GB from reading the scene to results.json), and
-// the joint segments a region is cut with.
-inline constexpr std::size_t kSceneBlockLimit = 200000;
-inline constexpr double kRegionSegmentLimit = 1e7;
+// The definitions of a parsed scene (overrides already applied); `path` names it in errors and
+// places the CSV tables it refers to.
+SceneDefinition parseScene(const toml::table& root, const std::string& path);
 
 // Throws SceneError (bad file, syntax, key, type or value) or GeometryError (bad polygon).
 Scene readScene(const std::string& path, const std::vector<std::string>& overrides = {});

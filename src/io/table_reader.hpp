@@ -15,25 +15,13 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "core/shown.hpp"
 #include "core/vec2.hpp"
 #include "geometry/polygon.hpp"
+#include "scene/origin.hpp"
 
 namespace vdec {
 
-
-inline double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
-
-// A value as the user would write it: 1e-09, not 0.000000.
-inline std::string shown(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-// A count, or an estimate of one, as a whole number (in exponent form beyond 1e15).
-inline std::string shownCount(double v) {
-  return std::abs(v) < 1e15 ? std::to_string(static_cast<long long>(std::ceil(v))) : shown(v);
-}
 
 // Reads one TOML table, remembering which keys were used so that unknown ones are errors.
 class TableReader {
@@ -186,6 +174,16 @@ class TableReader {
       if (!used_.count(std::string(key.str()))) {
         throw SceneError(where(value.source()) + ": key '" + qualified(key.str()) + "': unknown key");
       }
+  }
+  // Where the table and each of its keys are, for errors found once the scene is read.
+  Origin origin() const {
+    Origin o;
+    o.file = file_;
+    o.line = static_cast<int>(table_.source().begin.line);
+    o.table = where(table_.source());
+    o.prefix = prefix_;
+    for (auto&& [key, value] : table_) o.keys.emplace(std::string(key.str()), where(value.source()));
+    return o;
   }
   const toml::table& table() const { return table_; }
   const std::string& file() const { return file_; }

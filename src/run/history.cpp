@@ -48,6 +48,12 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
   return table;
 }
 
+std::string historyQuantityNames() {
+  std::string known;
+  for (const auto& q : historyQuantities()) known += (known.empty() ? "" : ", ") + std::string(q.name);
+  return known;
+}
+
 std::optional<HistoryQuantityInfo> findHistoryQuantity(std::string_view name) {
   for (const auto& info : historyQuantities())
     if (info.name == name) return info;

@@ -35,6 +35,8 @@ struct HistoryQuantityInfo {
 
 const std::vector<HistoryQuantityInfo>& historyQuantities();
 std::optional<HistoryQuantityInfo> findHistoryQuantity(std::string_view name);
+// The names of every quantity, comma-separated, for a message about an unknown one.
+std::string historyQuantityNames();
 HistorySubject findHistorySubject(HistoryQuantity quantity);
 
 struct HistorySpec {

@@ -2,7 +2,8 @@
 
 Data flows one way (docs/design.md): the model's types at the bottom, then the geometry and the
 joint laws, contacts, motion, zones and boundaries, the run layer that orchestrates them, the
-readers and writers that build and report a run, and the command line on top. An include that
+scene definitions and the builder that makes a model of them, the readers and writers, and the
+command line on top. An include that
 reaches upward ties a component to what is built on it; this test fails on the first one, naming
 the file and line, so that CI refuses it as a build would.
 """
@@ -21,8 +22,9 @@ LAYERS = {
     "motion": 3,
     "zone": 4, "boundary": 4,
     "run": 5,
-    "io": 6,
-    "cli": 7,
+    "scene": 6,
+    "io": 7,
+    "cli": 8,
 }
 # Header-only value types that the model stores, and that include nothing of vdec's own: they
 # sit with their component but belong to the bottom layer.

@@ -9,7 +9,7 @@
 
 #include "run/cycle.hpp"
 #include "core/errors.hpp"
-#include "io/deformable_reader.hpp"
+#include "io/scene_sections.hpp"
 #include "requirements.hpp"
 #include "scene_fixture.hpp"
 

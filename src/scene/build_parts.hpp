@@ -1,0 +1,36 @@
+#pragma once
+// The builder's parts, shared by its files: name lookups that fail on a definition's origin,
+// boundary selection and phases.
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/model.hpp"
+#include "run/cycle.hpp"
+#include "scene/scene_definition.hpp"
+
+namespace vdec {
+
+// The block named `name`, or an error on `key` of `origin`.
+int blockNamed(const Model& model, const Origin& origin, std::string_view key, const std::string& name);
+int blockMaterialNamed(const Model& model, const Origin& origin, std::string_view key, const std::string& name);
+int jointMaterialNamed(const Model& model, const Origin& origin, std::string_view key, const std::string& name);
+
+// A boundary definition resolved to the gridpoints and edges of its block in `model` (its
+// history, if any, appended to model.timeFunctions).
+BoundaryCondition resolveBoundary(const BoundaryDefinition& definition, Model& model);
+
+// A phase resolved against the model. `geometry` is the model as the phase will find it
+// (excavated by the phases before; made on the first excavation), on which its boundaries select
+// gridpoints and edges; `active` holds the names of the boundaries active when it starts.
+Phase buildPhase(const PhaseDefinition& definition, Model& model, std::optional<Model>& geometry,
+                 std::set<std::string>& active);
+
+// History subjects by position (initial configuration): the block's gridpoint nearest `point`,
+// and the zone of the block that holds `point` (-1 when none does).
+int nearestGridpoint(const Model& model, int block, Vec2 point);
+int zoneAt(const Model& model, int block, Vec2 point);
+
+}  // namespace vdec

@@ -1,0 +1,89 @@
+// A phase definition resolved against the model: the materials, blocks and boundaries it names,
+// its excavations tried on a copy of the model as the phase will find it.
+#include <cmath>
+
+#include "scene/build_parts.hpp"
+
+namespace vdec {
+
+namespace {
+
+JointStrengthChange jointStrength(const Model& m, const JointStrengthDefinition& d) {
+  JointStrengthChange change;
+  change.material = jointMaterialNamed(m, d.origin, "name", d.material);
+  const JointMaterial& j = m.jointMaterials[change.material];
+  if (j.law == JointLaw::ContinuouslyYielding)
+    d.origin.fail("name", "joint material '" + d.material + "' is continuously yielding; a phase changes the friction, "
+                          "cohesion and tension of the Coulomb and point-contact laws only");
+  if (d.frictionDegrees) change.tanFriction = std::tan(radians(*d.frictionDegrees));
+  change.cohesion = d.cohesion;
+  change.tension = d.tension;
+  if (j.law == JointLaw::PointContact && (d.cohesion.value_or(0.0) > 0 || d.tension.value_or(0.0) > 0))
+    d.origin.fail(d.cohesion.value_or(0.0) > 0 ? "cohesion" : "tension",
+                  "the point-contact law has no cohesion or tensile strength");
+  return change;
+}
+
+std::pair<int, MohrCoulombProperties> blockStrength(const Model& m, const BlockStrengthDefinition& d) {
+  const int material = blockMaterialNamed(m, d.origin, "name", d.material);
+  if (!m.blockMaterials[material].elastic())
+    d.origin.fail("friction", "Mohr-Coulomb plasticity needs the elastic constants too (young and poisson, or bulk and shear)");
+  return {material, d.strength};
+}
+
+RigidBlockChange rigidBlock(const Model& m, const RigidBlockChangeDefinition& d) {
+  RigidBlockChange change = d.change;
+  change.block = blockNamed(m, d.origin, "name", d.block);
+  if (m.blocks.deformable[change.block])
+    d.origin.fail("name", "block '" + m.blocks.name[change.block] + "' is deformable: a phase holds, drives and loads "
+                          "its gridpoints through [[phase.boundary]] tables");
+  return change;
+}
+
+}  // namespace
+
+Phase buildPhase(const PhaseDefinition& d, Model& m, std::optional<Model>& geometry, std::set<std::string>& active) {
+  Phase phase;
+  phase.name = d.name;
+  phase.stop = d.stop;
+  phase.requireEquilibrium = d.requireEquilibrium;
+  PhaseChanges& c = phase.changes;
+  c.gravity = d.gravity;
+  c.massDamping = d.massDamping;
+  c.adaptiveDamping = d.adaptiveDamping;
+  c.resetDisplacements = d.resetDisplacements;
+  c.resetVelocities = d.resetVelocities;
+  for (const JointStrengthDefinition& j : d.jointStrengths) c.joints.push_back(jointStrength(m, j));
+  for (const std::string& name : d.free) {
+    if (!active.erase(name))
+      d.origin.fail("free", "no boundary named '" + name + "' is active when the phase starts (give [[boundary]] or an "
+                            "earlier phase's [[phase.boundary]] that name)");
+    c.freeBoundaries.push_back(name);
+  }
+  for (const BlockStrengthDefinition& b : d.blockStrengths) c.blockStrengths.push_back(blockStrength(m, b));
+  for (const RigidBlockChangeDefinition& b : d.blocks) c.blocks.push_back(rigidBlock(m, b));
+  for (const ExcavationDefinition& e : d.excavations) {
+    const ExcavationRegion& region = e.region;
+    for (int b = 0; b < m.blocks.size(); ++b)
+      if (!m.blocks.deformable[b] && region.contains(m.blocks.centroid[b]))
+        e.origin.failTable("holds the centroid of rigid block '" + m.blocks.name[b] + "': a phase excavates zones of "
+                           "deformable blocks only; remove rigid blocks before the run with [[excavation]]");
+    if (!geometry) geometry = m;
+    if (excavateZones(*geometry, [&](Vec2 p) { return region.contains(p); }, region.where).removed == 0)
+      e.origin.failTable("removes nothing: no zone centroid lies in it when the phase starts");
+    if (geometry->zones.size() == 0) e.origin.failTable("removes every zone: the model would have none left");
+    c.excavations.push_back(region);
+  }
+  for (const BoundaryDefinition& b : d.boundaries) {
+    Model& selected = geometry ? *geometry : m;
+    BoundaryCondition condition = resolveBoundary(b, selected);
+    if (geometry) m.timeFunctions = geometry->timeFunctions;
+    if (!condition.name.empty() && !active.insert(condition.name).second)
+      b.origin.fail("name", "boundary '" + condition.name + "' is active when the phase starts; free it first with this "
+                            "phase's free = [\"" + condition.name + "\"]");
+    c.boundaries.push_back(std::move(condition));
+  }
+  return phase;
+}
+
+}  // namespace vdec

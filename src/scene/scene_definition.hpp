@@ -1,0 +1,189 @@
+#pragma once
+// A scene as plain definitions, one struct per section of the scene file
+// (docs/user-manual/scene-format.md), before any model exists: what the reader (io/) parses a
+// TOML scene into, and what tests and benchmarks write in code. Values are checked one by one
+// where they are read; names are not yet resolved and nothing is placed or zoned. The builder
+// (scene/scene_builder.hpp) resolves, checks against each other and makes the model.
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "boundary/time_function.hpp"
+#include "core/model.hpp"
+#include "geometry/block_cutting.hpp"
+#include "geometry/polygon.hpp"
+#include "geometry/zoning.hpp"
+#include "run/cycle.hpp"
+#include "scene/origin.hpp"
+#include "zone/excavation.hpp"
+
+namespace vdec {
+
+struct ModelDefinition {
+  Vec2 gravity;
+  double rounding = 0.0;          // d of 1.3.3.2, m
+  double contactTolerance = 0.0;  // 0: the rounding length
+  std::string defaultJoint;       // "": the only joint material, if there is one
+  Origin origin;
+};
+
+struct BlockMaterialDefinition {
+  BlockMaterial material;
+  Origin origin;
+};
+
+struct JointMaterialDefinition {
+  JointMaterial material;
+  Origin origin;
+};
+
+// How a block is zoned; Rigid: not at all.
+struct ZoningDefinition {
+  enum class Kind { Rigid, Structured, Unstructured, Annulus };
+  Kind kind = Kind::Rigid;
+  int nx = 0, ny = 0;     // Structured: cells along the first and second side
+  double maxEdge = 0.0;   // Unstructured
+  AnnulusSpec annulus;    // Annulus: the block's outline too
+  Origin origin;          // the zoning or annulus table
+};
+
+struct BlockDefinition {
+  std::string name;
+  std::string material;
+  Polygon vertices;  // counter-clockwise; empty for an annulus
+  ZoningDefinition zoning;
+  // A rigid block's driven degrees of freedom (DrivenDof bits), their velocity, its loads.
+  std::uint8_t fix = 0;
+  Vec2 velocity, force;
+  double angularVelocity = 0.0, moment = 0.0;
+  std::optional<TimeFunction> velocityHistory;  // scales the velocity of the fixed components
+  Origin origin;
+};
+
+struct RegionDefinition {
+  RegionSpec region;  // cut into blocks named region.1, region.2, ...
+  std::string material;
+  Origin origin;
+};
+
+// [[excavation]] before the run, or [[phase.excavation]] at a phase's start.
+struct ExcavationDefinition {
+  ExcavationRegion region;
+  Origin origin;
+};
+
+// A closed range [lo, hi] of a coordinate, or everything.
+struct CoordinateRange {
+  double lo = -INFINITY, hi = INFINITY;
+  bool holds(double v, double slack) const { return v >= lo - slack && v <= hi + slack; }
+};
+
+// A boundary stress tabulated against the polar angle (degrees, about the boundary's centre).
+struct StressTable {
+  std::string file;
+  std::vector<double> angle;  // increasing
+  std::vector<std::array<double, 3>> stress;  // sxx, syy, sxy
+  // Linear between rows; an angle outside the table is an error on `origin`'s stress_table.
+  std::array<double, 3> at(double angleDegrees, const Origin& origin) const;
+};
+
+// One [[boundary]] (or [[phase.boundary]]) table: which gridpoints of which deformable block, and
+// what it does to them: drives them (fix, velocities), loads their edges (stress, pressure,
+// stress table) or absorbs waves there (viscous).
+struct BoundaryDefinition {
+  std::string name;  // "": cannot be freed by a phase
+  std::string block;
+  CoordinateRange x, y, r, angle;  // on the initial positions; r and angle about `centre`
+  Vec2 centre;
+  bool viscous = false;
+  std::uint8_t fix = 0;           // DriveX / DriveY
+  std::uint8_t velocityBits = 0;  // components driven at `velocity`
+  Vec2 velocity;
+  bool loaded = false;  // stress, pressure (stress -p, -p, 0) or a stress table
+  std::array<double, 3> stress{}, gradientX{}, gradientY{};  // sxx, syy, sxy and their gradients
+  std::optional<StressTable> stressTable;
+  std::optional<TimeFunction> history;  // scales the velocities or the stress
+  Origin origin;
+};
+
+struct InitialStressDefinition {
+  std::array<double, 4> stress{};  // sxx, syy, sxy, szz at the origin
+  std::array<double, 4> gradientX{}, gradientY{};
+  Origin origin;
+};
+
+struct JointAssignmentDefinition {
+  std::array<std::string, 2> blocks;
+  std::string joint;
+  Origin origin;
+};
+
+struct HistoryDefinition {
+  std::string name;
+  std::string quantity;              // as in docs/user-manual/histories.md, e.g. "block.x"
+  std::string block;                 // block, gridpoint and zone quantities
+  std::array<std::string, 2> blocks; // joint quantities
+  std::optional<Vec2> point;         // gridpoint and zone quantities
+  int every = 1;
+  Origin origin;
+};
+
+struct JointStrengthDefinition {
+  std::string material;
+  std::optional<double> frictionDegrees, cohesion, tension;
+  Origin origin;
+};
+
+struct BlockStrengthDefinition {
+  std::string material;
+  MohrCoulombProperties strength;
+  Origin origin;
+};
+
+struct RigidBlockChangeDefinition {
+  std::string block;
+  RigidBlockChange change;  // change.block is resolved by the builder
+  Origin origin;
+};
+
+struct PhaseDefinition {
+  std::string name;
+  StopCriteria stop;
+  bool requireEquilibrium = false;
+  std::optional<Vec2> gravity;
+  std::optional<double> massDamping;
+  std::optional<bool> adaptiveDamping;
+  bool resetDisplacements = false, resetVelocities = false;
+  std::vector<JointStrengthDefinition> jointStrengths;
+  std::vector<std::string> free;  // names of active boundaries taken off
+  std::vector<BlockStrengthDefinition> blockStrengths;
+  std::vector<RigidBlockChangeDefinition> blocks;
+  std::vector<ExcavationDefinition> excavations;
+  std::vector<BoundaryDefinition> boundaries;
+  Origin origin;
+};
+
+struct SceneDefinition {
+  std::string title;
+  ModelDefinition model;
+  std::vector<BlockMaterialDefinition> blockMaterials;
+  std::vector<JointMaterialDefinition> jointMaterials;
+  // [solver], [stop] and [output]; its phases are made from `phases` below.
+  RunSettings settings;
+  Origin solver;
+  std::vector<BlockDefinition> blocks;
+  std::vector<RegionDefinition> regions;  // cut after the blocks, their pieces listed after them
+  std::vector<ExcavationDefinition> excavations;
+  std::vector<BoundaryDefinition> boundaries;
+  std::optional<InitialStressDefinition> initialStress;
+  std::vector<JointAssignmentDefinition> jointAssignments;
+  std::vector<HistoryDefinition> histories;
+  std::vector<PhaseDefinition> phases;
+  Origin root;  // the scene as a whole, for what is missing from it
+  std::vector<std::string> warnings;
+};
+
+}  // namespace vdec
