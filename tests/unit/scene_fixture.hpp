@@ -1,13 +1,15 @@
 #pragma once
-// Builds scenes from TOML text for unit tests (through the real reader, so tests exercise the
-// same path as users).
+// Scenes for unit tests: defined in code and made by the builder (scene/scene_builder.hpp), or,
+// for the tests of the reader itself, written as TOML and read through the real reader.
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <cmath>
 #include <string>
 
 #include "io/scene_reader.hpp"
+#include "scene/scene_builder.hpp"
 
 namespace vdec::testing {
 
@@ -57,6 +59,32 @@ name = "top"
 material = "rock"
 vertices = [[-0.5, 0.0], [0.5, 0.0], [0.5, 1.0], [-0.5, 1.0]]
 )";
+}
+
+// blockOnBase() in code: a definition to change before it is built, e.g. settings.frac.
+inline SceneDefinition blockOnBaseDefinition() {
+  SceneDefinition s;
+  s.model.gravity = {0.0, -10.0};
+  s.model.rounding = 0.01;
+  s.settings.stop.cycles = 10;
+  BlockMaterial& rock = s.blockMaterials.emplace_back().material;
+  rock.name = "rock";
+  rock.density = 2500.0;
+  JointMaterial& joint = s.jointMaterials.emplace_back().material;
+  joint.name = "joint";
+  joint.kn = joint.ks = 1e8;
+  joint.tanFriction = std::tan(radians(30.0));
+  auto block = [&](const std::string& name, Polygon vertices) -> BlockDefinition& {
+    BlockDefinition& b = s.blocks.emplace_back();
+    b.name = name;
+    b.material = "rock";
+    b.vertices = std::move(vertices);
+    b.origin.prefix = "block '" + name + "'";
+    return b;
+  };
+  block("base", {{-1.5, -1.0}, {1.5, -1.0}, {1.5, 0.0}, {-1.5, 0.0}}).fix = DriveAll;
+  block("top", {{-0.5, 0.0}, {0.5, 0.0}, {0.5, 1.0}, {-0.5, 1.0}});
+  return s;
 }
 
 }  // namespace vdec::testing

@@ -12,7 +12,7 @@
 #include "scene_fixture.hpp"
 
 using namespace vdec;
-using vdec::testing::blockOnBase;
+using vdec::testing::blockOnBaseDefinition;
 using vdec::testing::sceneFromText;
 
 namespace {
@@ -26,7 +26,7 @@ void place(Model& m, int b, Vec2 centroid, double rotation) {
 
 TEST(ContactGeometry, RightAngleCornerArcHasRadiusDAndCentreOnTheBisector) {
   VDEC_REQUIREMENTS("REQ-CONTACT-001");
-  Scene s = sceneFromText(blockOnBase(), "arc");
+  Scene s = buildScene(blockOnBaseDefinition());
   const Model& m = s.model;
   const int corner = m.blocks.firstVertex[1];  // (-0.5, 0) of "top"
   EXPECT_NEAR(m.vertices.geometry[corner].arcRadius, 0.01, 1e-15);
@@ -36,7 +36,7 @@ TEST(ContactGeometry, RightAngleCornerArcHasRadiusDAndCentreOnTheBisector) {
 
 TEST(ContactGeometry, EdgeToEdgeContactIsTwoCornerEdgeContactsOfHalfLength) {
   VDEC_REQUIREMENTS("REQ-CONTACT-002");
-  Scene s = sceneFromText(blockOnBase(), "edge-edge");
+  Scene s = buildScene(blockOnBaseDefinition());
   Model& m = s.model;
   ContactDetection detection;
   detection.initialise(m);
@@ -56,7 +56,7 @@ TEST(ContactGeometry, NormalVariesContinuouslyAsABlockRollsOverACorner) {
   // The top block's corner slides around the base's corner at (1.5, 0): the contact passes from
   // the base's top edge, over its rounded corner, to its side edge. The normal must turn
   // smoothly: no jump larger than a small multiple of the step in position.
-  Scene s = sceneFromText(blockOnBase(), "continuity");
+  Scene s = buildScene(blockOnBaseDefinition());
   Model& m = s.model;
   const int top = 1;
   const int corner = m.blocks.firstVertex[top];  // bottom-left corner of "top"
@@ -83,7 +83,7 @@ TEST(ContactGeometry, NormalVariesContinuouslyAsABlockRollsOverACorner) {
 
 TEST(ContactGeometry, CornerToCornerNormalJoinsTheArcCentres) {
   VDEC_REQUIREMENTS("REQ-CONTACT-001");
-  Scene s = sceneFromText(blockOnBase(), "corner-corner");
+  Scene s = buildScene(blockOnBaseDefinition());
   Model& m = s.model;
   const int corner = m.blocks.firstVertex[1];
   const int baseCorner = m.blocks.firstVertex[0] + 2;  // (1.5, 0)
@@ -139,10 +139,9 @@ vertices = [[0.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]]
 
 TEST(ContactGeometry, OverlappingBlocksAtTheStartAreAnErrorNamingThem) {
   VDEC_REQUIREMENTS("REQ-CONTACT-003");
-  std::string scene = blockOnBase();
-  const std::string from = "[[-0.5, 0.0], [0.5, 0.0], [0.5, 1.0], [-0.5, 1.0]]";
-  scene.replace(scene.find(from), from.size(), "[[-0.5, -0.003], [0.5, -0.003], [0.5, 1.0], [-0.5, 1.0]]");
-  Scene s = sceneFromText(scene, "overlap");
+  SceneDefinition scene = blockOnBaseDefinition();
+  scene.blocks[1].vertices = {{-0.5, -0.003}, {0.5, -0.003}, {0.5, 1.0}, {-0.5, 1.0}};
+  Scene s = buildScene(scene);
   ContactDetection detection;
   try {
     detection.initialise(s.model);

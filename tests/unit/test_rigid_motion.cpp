@@ -7,12 +7,21 @@
 #include "scene_fixture.hpp"
 
 using namespace vdec;
-using vdec::testing::blockOnBase;
-using vdec::testing::sceneFromText;
+using vdec::testing::blockOnBaseDefinition;
+
+namespace {
+
+Scene sceneWithFrac(double frac) {
+  SceneDefinition scene = blockOnBaseDefinition();
+  scene.settings.frac = frac;
+  return buildScene(scene);
+}
+
+}  // namespace
 
 TEST(RigidMotion, FreeFallFollowsTheCentralDifferenceRecurrenceExactly) {
   VDEC_REQUIREMENTS("REQ-MOTION-001");
-  Scene s = sceneFromText(blockOnBase(), "fall");
+  Scene s = buildScene(blockOnBaseDefinition());
   Model& m = s.model;
   m.blocks.centroid[1].y += 10.0;  // far above the base: no contact
   m.contacts.clear();
@@ -26,7 +35,7 @@ TEST(RigidMotion, FreeFallFollowsTheCentralDifferenceRecurrenceExactly) {
 
 TEST(RigidMotion, MassDampingFollowsEquation1321) {
   VDEC_REQUIREMENTS("REQ-MOTION-002");
-  Scene s = sceneFromText(blockOnBase(), "damped");
+  Scene s = buildScene(blockOnBaseDefinition());
   Model& m = s.model;
   m.gravity = {0.0, 0.0};
   m.blocks.velocity[1] = {2.0, -1.0};
@@ -45,7 +54,7 @@ TEST(RigidMotion, LocalDampingOpposesTheMotionByAFractionOfTheForce) {
   // v1 = v0 + (F - alpha_L |F| sgn v0) dt / m per degree of freedom: x moves with its force
   // (damping takes 0.8 of it), y against its force (damping adds 0.8 of it), rotation has no
   // moment (no damping force).
-  Scene s = sceneFromText(blockOnBase(), "local");
+  Scene s = buildScene(blockOnBaseDefinition());
   Model& m = s.model;
   m.gravity = {0.0, 0.0};
   m.blocks.velocity[1] = {2.0, -1.0};
@@ -63,7 +72,7 @@ TEST(RigidMotion, LocalDampingOpposesTheMotionByAFractionOfTheForce) {
 
 TEST(RigidMotion, DrivenDegreesOfFreedomKeepTheirVelocity) {
   VDEC_REQUIREMENTS("REQ-MOTION-003");
-  Scene s = sceneFromText(blockOnBase(), "driven");
+  Scene s = buildScene(blockOnBaseDefinition());
   Model& m = s.model;
   m.blocks.driven[1] = DriveX | DriveRotation;
   m.blocks.velocity[1] = {0.25, 0.0};
@@ -78,7 +87,7 @@ TEST(RigidMotion, DrivenDegreesOfFreedomKeepTheirVelocity) {
 
 TEST(RigidMotion, TimeStepFollowsEquation1328) {
   VDEC_REQUIREMENTS("REQ-MOTION-004");
-  Scene s = sceneFromText(blockOnBase(), "timestep");
+  Scene s = buildScene(blockOnBaseDefinition());
   // M_min = 2500 kg and l_typ = 1 m, both of the free block: the fixed 3 m base does not count.
   EXPECT_NEAR(rigidBlockTimeStep(s.model, 0.1), 0.1 * 2.0 * std::sqrt(2500.0 / (1e8 * 1.0)), 1e-18);
   // With every block driven, all blocks count: l_typ = 3 m, the base's top edge.
@@ -89,7 +98,7 @@ TEST(RigidMotion, TimeStepFollowsEquation1328) {
 TEST(RigidMotion, UnstableTimeStepStopsTheRunWithADiagnostic) {
   VDEC_REQUIREMENTS("REQ-MOTION-005");
   // FRAC 1.7 is about three times the critical value for this block (0.53, RB-STABILITY-FRAC).
-  Scene s = sceneFromText(blockOnBase("[solver]\nfrac = 1.7\n"), "unstable");
+  Scene s = sceneWithFrac(1.7);
   s.settings.stop.cycles = 200;
   Cycle cycle(s.model, s.settings, {});
   const RunReport r = cycle.run();
@@ -100,7 +109,7 @@ TEST(RigidMotion, UnstableTimeStepStopsTheRunWithADiagnostic) {
 
 TEST(RigidMotion, StableRunKeepsEnergyWithinWhatWasSupplied) {
   VDEC_REQUIREMENTS("REQ-MOTION-005");
-  Scene s = sceneFromText(blockOnBase("[solver]\nfrac = 0.05\n"), "stable");
+  Scene s = sceneWithFrac(0.05);
   s.settings.stop.cycles = 2000;
   Cycle cycle(s.model, s.settings, {});
   const RunReport r = cycle.run();
@@ -112,7 +121,7 @@ TEST(RigidMotion, StableRunKeepsEnergyWithinWhatWasSupplied) {
 TEST(RigidMotion, SameSceneGivesBitwiseIdenticalResults) {
   VDEC_REQUIREMENTS("REQ-RUN-002");
   auto runOnce = [] {
-    Scene s = sceneFromText(blockOnBase("[solver]\nfrac = 0.2\n"), "repeat");
+    Scene s = sceneWithFrac(0.2);
     s.model.blocks.angularVelocity[1] = 0.05;
     s.settings.stop.cycles = 3000;
     Cycle cycle(s.model, s.settings, {});

@@ -37,6 +37,27 @@ vertices = [[0.0, 0.0], [2.0, 0.3], [2.4, 1.9], [-0.2, 1.5]]
 zoning = { nx = )" + std::to_string(nx) + ", ny = " + std::to_string(ny) + " }\n" + extra;
 }
 
+// quadScene in code.
+SceneDefinition quadDefinition(int nx, int ny) {
+  SceneDefinition s;
+  s.model.rounding = 0.01;
+  s.settings.stop.cycles = 10;
+  BlockMaterial& rock = s.blockMaterials.emplace_back().material;
+  rock.name = "rock";
+  rock.density = 2500.0;
+  const double young = 10e9, poisson = 0.25;
+  rock.bulk = young / (3.0 * (1.0 - 2.0 * poisson));
+  rock.shear = young / (2.0 * (1.0 + poisson));
+  BlockDefinition& patch = s.blocks.emplace_back();
+  patch.name = "patch";
+  patch.material = "rock";
+  patch.vertices = {{0.0, 0.0}, {2.0, 0.3}, {2.4, 1.9}, {-0.2, 1.5}};
+  patch.zoning.kind = ZoningDefinition::Kind::Structured;
+  patch.zoning.nx = nx;
+  patch.zoning.ny = ny;
+  return s;
+}
+
 std::string sceneError(const std::string& text, const std::string& name) {
   try {
     sceneFromText(text, name);
@@ -94,7 +115,7 @@ TEST(Zones, PatchTestIsExactToRoundOff) {
   // Every gridpoint of a distorted mesh moves with one linear velocity field. Each zone must
   // then take the same strain increment, reach the stress of plane-strain elasticity for it,
   // and the zones must leave no net force on any interior gridpoint.
-  Scene s = sceneFromText(quadScene(3, 4), "patch");
+  Scene s = buildScene(quadDefinition(3, 4));
   Model& m = s.model;
   prepareZones(m);
   const double dt = 1e-3;
@@ -146,7 +167,7 @@ TEST(Zones, RigidRotationRotatesTheStressExactly) {
   VDEC_REQUIREMENTS("REQ-ZONE-003");
   // A zoned block with a stress in it turns rigidly by 90 degrees in 40 steps about a point:
   // sxx and syy must swap and sxy change sign, to round-off, with no strain on the way.
-  Scene s = sceneFromText(quadScene(2, 2), "rotate");
+  Scene s = buildScene(quadDefinition(2, 2));
   Model& m = s.model;
   prepareZones(m);
   for (int z = 0; z < m.zones.size(); ++z) {
@@ -181,20 +202,20 @@ TEST(Zones, ResultsAreBitwiseTheSameOnOneAndTwoThreads) {
   auto runWith = [](int threads) {
     omp_set_num_threads(threads);
     // Enough zones for several reduction chunks: 32 x 40 cells, 5120 zones.
-    Scene s = sceneFromText(quadScene(32, 40, R"(
-[solver]
-mass_damping = 50.0
-[[boundary]]
-block = "patch"
-y = [-0.01, 0.31]
-x = [-0.01, 2.01]
-fix = ["x", "y"]
-[[boundary]]
-block = "patch"
-y = [1.49, 1.91]
-x = [-0.21, 2.41]
-stress = [0.0, -2e6, 1e5]
-)"), "threads");
+    SceneDefinition definition = quadDefinition(32, 40);
+    definition.settings.massDamping = 50.0;
+    BoundaryDefinition& base = definition.boundaries.emplace_back();
+    base.block = "patch";
+    base.y = {-0.01, 0.31};
+    base.x = {-0.01, 2.01};
+    base.fix = DriveX | DriveY;
+    BoundaryDefinition& top = definition.boundaries.emplace_back();
+    top.block = "patch";
+    top.y = {1.49, 1.91};
+    top.x = {-0.21, 2.41};
+    top.loaded = true;
+    top.stress = {0.0, -2e6, 1e5};
+    Scene s = buildScene(definition);
     s.settings.stop.cycles = 300;
     Cycle cycle(s.model, s.settings, {});
     const RunReport r = cycle.run();
