@@ -60,7 +60,7 @@ def test_without_softening_the_shear_stress_is_the_exponential_closed_form():
     exact = -tau_m * np.expm1(-KS * us / tau_m)
     tau = _cy(us, "tau", FLAT)
     assert np.allclose(tau, exact, rtol=1e-15, atol=0.0)
-    assert tau[-1] == pytest.approx(tau_m, rel=1e-12)        # 20 L = 34.6 tau_m/ks: on the plateau
+    assert tau[-1] == pytest.approx(tau_m, rel=1e-12, abs=0)        # 20 L = 34.6 tau_m/ks: on the plateau
     assert np.all(_cy(us, "phi_eff_deg", FLAT) == 30.0)
     assert np.allclose(_cy(us, "us_p", FLAT), us - exact / KS, rtol=0.0, atol=1e-15 * us[-1])
     # |tau| < sn tan(phi) throughout: no dilation at all.
@@ -79,8 +79,8 @@ def test_softening_peaks_above_the_residual_then_softens_to_it():
     assert 0 < peak < 500                                    # within the first 5 L
     assert tau[peak] > 1.08 * residual                       # 630.8 kPa against 577.4 kPa
     # After 60 roughness lengths of slip phi_eff - phi ~ exp(-56): the residual sn tan(phi).
-    assert tau[-1] == pytest.approx(residual, rel=1e-12)
-    assert phi[-1] == pytest.approx(30.0, rel=1e-12)
+    assert tau[-1] == pytest.approx(residual, rel=1e-12, abs=0)
+    assert phi[-1] == pytest.approx(30.0, rel=1e-12, abs=0)
     # Softening, monotonically (strictly until tau is within round-off of the residual).
     assert np.all(np.diff(tau[peak:]) <= 0.0)
     assert np.all(np.diff(tau[peak:])[tau[peak + 1:] > (1.0 + 1e-12) * residual] < 0.0)
@@ -114,7 +114,7 @@ def test_at_the_peak_tau_equals_the_bounding_strength():
     u_peak = brentq(slope, us[i - 1], us[i + 1], xtol=1e-18, rtol=4.0 * np.finfo(float).eps)
     tau_peak = float(_cy(u_peak, "tau"))
     bound = SN * math.tan(math.radians(float(_cy(u_peak, "phi_eff_deg"))))
-    assert tau_peak == pytest.approx(bound, rel=1e-12)       # F = 0 at the peak
+    assert tau_peak == pytest.approx(bound, rel=1e-12, abs=0)       # F = 0 at the peak
     assert tau_peak >= tau.max() * (1.0 - 1e-15)
 
 
@@ -128,7 +128,7 @@ def test_reversal_restores_the_elastic_slope(turning_point):
     us = turning_point - h * np.arange(5.0)
     tau = _cy(np.concatenate(([0.5 * turning_point], us)), "tau", turning_points=(turning_point,))[1:]
     slope = -(ONE_SIDED @ tau) / h                           # dtau/dus, us decreasing
-    assert slope == pytest.approx(KS, rel=1e-10)
+    assert slope == pytest.approx(KS, rel=1e-10, abs=0)
     # Just before the turning point the slope was ks F < ks.
     before = _cy(turning_point - h * np.arange(5.0)[::-1], "tau")
     assert (before[-1] - before[-2]) / h < 0.9 * KS
@@ -151,7 +151,7 @@ def test_second_reversal_caps_r_at_three_quarters(back, capped):
     assert (ratio > 0.75) == capped
     expected = KS * (1.0 - ratio) / 0.25 if capped else KS
     slope = (ONE_SIDED @ tau[2:]) / h
-    assert slope == pytest.approx(expected, rel=1e-9)
+    assert slope == pytest.approx(expected, rel=1e-9, abs=0)
 
 
 def _integrate_cy_with_scipy(samples, turning_points, ks, sn, phi_deg, phi0_deg, roughness):
@@ -311,10 +311,10 @@ def test_closure_known_values():
     # By hand: up to 1 mm sn = 1e9 un; at 2 mm (1e6^0.5 + 1e6 x 0.5 x 1e-3)^2 = 1500^2 = 2.25 MPa.
     sn = jt.continuously_yielding_normal_closure([0.0, 0.5e-3, 1e-3, 2e-3], **CLOSE)
     assert np.allclose(sn, [0.0, 0.5e6, 1e6, 2.25e6], rtol=1e-14, atol=0.0)
-    assert jt.continuously_yielding_closure_of_stress(2.25e6, **CLOSE) == pytest.approx(2e-3, rel=1e-14)
+    assert jt.continuously_yielding_closure_of_stress(2.25e6, **CLOSE) == pytest.approx(2e-3, rel=1e-14, abs=0)
     # en = 1, an = kn0/s* = 1000 /m: sn = 1e6 exp(1000 (un - 1e-3)), e MPa at 2 mm.
     p1 = _closure_params(1.0)
-    assert jt.continuously_yielding_normal_closure(2e-3, **p1) == pytest.approx(1e6 * math.e, rel=1e-14)
+    assert jt.continuously_yielding_normal_closure(2e-3, **p1) == pytest.approx(1e6 * math.e, rel=1e-14, abs=0)
 
 
 @CLOSURE
@@ -334,7 +334,7 @@ def test_closure_solves_dsn_dun_equals_kn(en):
     for sn in (0.3e6, 1e6, 2.5e6, 7e6):
         un_q = quad(lambda s: 1.0 / kn(s), 0.0, sn, points=[s_star] if sn > s_star else None,
                     epsabs=0.0, epsrel=1e-13)[0]
-        assert jt.continuously_yielding_closure_of_stress(sn, **p) == pytest.approx(un_q, rel=1e-12)
+        assert jt.continuously_yielding_closure_of_stress(sn, **p) == pytest.approx(un_q, rel=1e-12, abs=0)
 
 
 @CLOSURE
@@ -345,9 +345,9 @@ def test_closure_is_continuous_and_smooth_at_the_threshold(en):
     un_star, h = 1e-3, 1e-9
     below = jt.continuously_yielding_normal_closure(np.array([un_star - 2 * h, un_star - h, un_star]), **p)
     above = jt.continuously_yielding_normal_closure(np.array([un_star, un_star + h, un_star + 2 * h]), **p)
-    assert below[-1] == pytest.approx(1e6, rel=1e-14) and above[0] == below[-1]
-    assert (3 * below[2] - 4 * below[1] + below[0]) / (2 * h) == pytest.approx(1e9, rel=1e-6)
-    assert (-3 * above[0] + 4 * above[1] - above[2]) / (2 * h) == pytest.approx(1e9, rel=1e-6)
+    assert below[-1] == pytest.approx(1e6, rel=1e-14, abs=0) and above[0] == below[-1]
+    assert (3 * below[2] - 4 * below[1] + below[0]) / (2 * h) == pytest.approx(1e9, rel=1e-6, abs=0)
+    assert (-3 * above[0] + 4 * above[1] - above[2]) / (2 * h) == pytest.approx(1e9, rel=1e-6, abs=0)
 
 
 @CLOSURE
@@ -370,7 +370,7 @@ def test_closure_with_en_zero_is_linear():
     # kn = max(kn0, an): the larger constant throughout.
     assert np.allclose(jt.continuously_yielding_normal_closure(un, kn0=1e9, an=2e9, en=0.0), 2e9 * un, rtol=1e-15)
     assert np.allclose(jt.continuously_yielding_normal_closure(un, kn0=1e9, an=5e8, en=0.0), 1e9 * un, rtol=1e-15)
-    assert jt.continuously_yielding_closure_of_stress(4e6, kn0=1e9, an=2e9, en=0.0) == pytest.approx(2e-3, rel=1e-15)
+    assert jt.continuously_yielding_closure_of_stress(4e6, kn0=1e9, an=2e9, en=0.0) == pytest.approx(2e-3, rel=1e-15, abs=0)
 
 
 @CLOSURE

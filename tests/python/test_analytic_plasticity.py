@@ -12,8 +12,8 @@ REQ = pytest.mark.requirements("REQ-QA-003")
 @REQ
 def test_n_phi_known_values():
     # phi = 30 deg: (1 + 0.5) / (1 - 0.5) = 3; phi = 45 deg: (1 + 0.7071) / (1 - 0.7071) = 5.8284.
-    assert pl.n_phi(friction_deg=30.0) == pytest.approx(3.0, rel=1e-14)
-    assert pl.n_phi(friction_deg=45.0) == pytest.approx(3.0 + 2.0 * math.sqrt(2.0), rel=1e-14)
+    assert pl.n_phi(friction_deg=30.0) == pytest.approx(3.0, rel=1e-14, abs=0)
+    assert pl.n_phi(friction_deg=45.0) == pytest.approx(3.0 + 2.0 * math.sqrt(2.0), rel=1e-14, abs=0)
     with pytest.raises(ValueError):
         pl.n_phi(friction_deg=0.0)
 
@@ -23,9 +23,9 @@ def test_biaxial_peak_stress_known_values():
     # c = 1 MPa, phi = 30 deg: unconfined strength 2 c sqrt(3) = 3.4641 MPa; under 1 MPa of
     # confinement 1 x 3 + 3.4641 = 6.4641 MPa (compression, so negative).
     assert pl.biaxial_peak_stress(confining_pressure=0.0, cohesion=1e6, friction_deg=30.0) == \
-        pytest.approx(-2e6 * math.sqrt(3.0), rel=1e-14)
+        pytest.approx(-2e6 * math.sqrt(3.0), rel=1e-14, abs=0)
     assert pl.biaxial_peak_stress(confining_pressure=1e6, cohesion=1e6, friction_deg=30.0) == \
-        pytest.approx(-6.464101615e6, rel=1e-9)
+        pytest.approx(-6.464101615e6, rel=1e-9, abs=0)
 
 
 @pytest.mark.requirements("REQ-QA-003", "REQ-MC-005")
@@ -34,20 +34,20 @@ def test_single_plane_of_weakness_known_values():
     # No confinement, c_w = 0.2 MPa, phi_w = 30 deg: at beta = 60 deg the plane slips at
     # 2 c_w / ((1 - 1/3) sin 120) = 0.4 MPa / 0.57735 = 0.69282 MPa.
     assert pl.single_plane_of_weakness_peak_stress(confining_pressure=0.0, joint_cohesion=0.2e6, joint_angle_deg=60.0,
-                                                   **rock) == pytest.approx(-0.4e6 / (2.0 / 3.0 * math.sin(math.radians(120.0))), rel=1e-12)
+                                                   **rock) == pytest.approx(-0.4e6 / (2.0 / 3.0 * math.sin(math.radians(120.0))), rel=1e-12, abs=0)
     # At beta = 45 deg: 0.4 MPa / (1 - tan 30) = 0.94641 MPa.
     assert pl.single_plane_of_weakness_peak_stress(confining_pressure=0.0, joint_cohesion=0.2e6, joint_angle_deg=45.0,
-                                                   **rock) == pytest.approx(-0.4e6 / (1.0 - math.tan(math.radians(30.0))), rel=1e-12)
+                                                   **rock) == pytest.approx(-0.4e6 / (1.0 - math.tan(math.radians(30.0))), rel=1e-12, abs=0)
     # Cohesionless plane under 1 MPa, beta = 45 + phi_w / 2 = 60 deg: the minimum, sigma1 = N_phi_w sigma3 = 3 MPa.
     assert pl.single_plane_of_weakness_peak_stress(confining_pressure=1e6, joint_cohesion=0.0, joint_angle_deg=60.0,
-                                                   **rock) == pytest.approx(-3e6, rel=1e-12)
+                                                   **rock) == pytest.approx(-3e6, rel=1e-12, abs=0)
     # beta <= phi_w or beta = 90 deg: the plane cannot slip and the rock fails, 2 c sqrt(3) unconfined.
     for beta in (20.0, 30.0, 90.0):
         assert pl.single_plane_of_weakness_peak_stress(confining_pressure=0.0, joint_cohesion=0.2e6, joint_angle_deg=beta,
-                                                       **rock) == pytest.approx(-2e6 * math.sqrt(3.0), rel=1e-12)
+                                                       **rock) == pytest.approx(-2e6 * math.sqrt(3.0), rel=1e-12, abs=0)
     # A strong plane (c_w = 5 MPa) at 60 deg: the rock is weaker.
     assert pl.single_plane_of_weakness_peak_stress(confining_pressure=0.0, joint_cohesion=5e6, joint_angle_deg=60.0,
-                                                   **rock) == pytest.approx(-2e6 * math.sqrt(3.0), rel=1e-12)
+                                                   **rock) == pytest.approx(-2e6 * math.sqrt(3.0), rel=1e-12, abs=0)
 
 
 # The FLAC verification case "Cylindrical hole in an infinite Mohr-Coulomb medium": a = 1 m,
@@ -81,14 +81,14 @@ def test_salencon_plastic_radius_and_wall_displacement_known_values():
     #           = -0.57931 x 35.976 + 1.57931 x 54.147 + 0.57931 x 5.9756 = 68.135 MPa,
     # u = 68.135e6 / 5.6e9 = 12.167 mm inward.
     out = _salencon(np.array([1.0, 1.7349981445794187]))
-    assert out["plastic_radius"] == pytest.approx(1.7349981, rel=1e-7)
+    assert out["plastic_radius"] == pytest.approx(1.7349981, rel=1e-7, abs=0)
     assert out["plastic_radius"] == pytest.approx(1.7350, abs=5e-5)
-    assert out["wall_displacement"] == pytest.approx(-0.0121671, rel=1e-5)
+    assert out["wall_displacement"] == pytest.approx(-0.0121671, rel=1e-5, abs=0)
     assert out["ur"][0] == out["wall_displacement"]
     # Wall: srr = -pi = 0, stt = -sigma_c (unconfined strength); at R_p: srr = -sigma_re.
     assert out["srr"][0] == pytest.approx(0.0, abs=1e-6)
-    assert out["stt"][0] == pytest.approx(-SIGMA_C, rel=1e-12)
-    assert out["srr"][1] == pytest.approx(-12.0122124e6, rel=1e-8)
+    assert out["stt"][0] == pytest.approx(-SIGMA_C, rel=1e-12, abs=0)
+    assert out["srr"][1] == pytest.approx(-12.0122124e6, rel=1e-8, abs=0)
 
 
 @REQ
@@ -124,10 +124,10 @@ def test_salencon_continuity_at_the_plastic_radius(dilation_deg):
     inner = _salencon(rp * (1.0 - eps), dilation_deg=dilation_deg)
     outer = _salencon(rp * (1.0 + eps), dilation_deg=dilation_deg)
     for key in ("srr", "stt"):
-        assert inner[key] == pytest.approx(outer[key], rel=1e-7)
-    assert inner["ur"] == pytest.approx(outer["ur"], rel=1e-7)
+        assert inner[key] == pytest.approx(outer[key], rel=1e-7, abs=0)
+    assert inner["ur"] == pytest.approx(outer["ur"], rel=1e-7, abs=0)
     # The elastic-zone displacement at R_p: (p0 - sigma_re) R_p / (2 G), inward.
-    assert outer["ur"] == pytest.approx(-(30e6 - P_CRIT) * rp / (2.0 * FLAC_G), rel=1e-7)
+    assert outer["ur"] == pytest.approx(-(30e6 - P_CRIT) * rp / (2.0 * FLAC_G), rel=1e-7, abs=0)
 
 
 @REQ
@@ -198,7 +198,7 @@ def test_salencon_dilation_changes_the_displacement_not_the_stresses():
     assert np.allclose(plain["ur"][elastic], dilating["ur"][elastic], rtol=1e-14, atol=0.0)
     # Far away the stresses return to the in-situ -p0.
     far = _salencon(np.array([1e4]))
-    assert far["srr"][0] == pytest.approx(-30e6, rel=1e-6) and far["stt"][0] == pytest.approx(-30e6, rel=1e-6)
+    assert far["srr"][0] == pytest.approx(-30e6, rel=1e-6, abs=0) and far["stt"][0] == pytest.approx(-30e6, rel=1e-6, abs=0)
 
 
 @REQ
@@ -222,7 +222,7 @@ def test_salencon_rejects_bad_input():
 @REQ
 def test_plastic_strain_rate_ratio_known_values():
     assert pl.plastic_strain_rate_ratio(dilation_deg=0.0) == -1.0
-    assert pl.plastic_strain_rate_ratio(dilation_deg=30.0) == pytest.approx(-3.0, rel=1e-15)
+    assert pl.plastic_strain_rate_ratio(dilation_deg=30.0) == pytest.approx(-3.0, rel=1e-15, abs=0)
     assert pl.plastic_strain_rate_ratio(dilation_deg=10.0) == pytest.approx(-(1 + math.sin(math.radians(10))) / (1 - math.sin(math.radians(10))))
     with pytest.raises(ValueError, match="dilation"):
         pl.plastic_strain_rate_ratio(dilation_deg=90.0)

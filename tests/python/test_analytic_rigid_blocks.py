@@ -48,29 +48,29 @@ def continuous_from_initial_velocity(t, v0, *, mass, g, kn, contact_length, alph
 @REQ
 def test_known_values():
     # resting: N = m g = 2500 * 10 = 25000 N; d = 25000 / (1e8 * 1) = 2.5e-4 m
-    assert rb.resting_normal_force(mass=2500.0, g=10.0) == pytest.approx(25000.0, rel=1e-15)
-    assert rb.resting_settlement(**BLOCK) == pytest.approx(2.5e-4, rel=1e-15)
+    assert rb.resting_normal_force(mass=2500.0, g=10.0) == pytest.approx(25000.0, rel=1e-15, abs=0)
+    assert rb.resting_settlement(**BLOCK) == pytest.approx(2.5e-4, rel=1e-15, abs=0)
     # 2 m of contact halves it: 25000 / 2e8 = 1.25e-4 m
-    assert rb.resting_settlement(mass=2500.0, g=10.0, kn=1e8, contact_length=2.0) == pytest.approx(1.25e-4, rel=1e-15)
+    assert rb.resting_settlement(mass=2500.0, g=10.0, kn=1e8, contact_length=2.0) == pytest.approx(1.25e-4, rel=1e-15, abs=0)
     # w = sqrt(1e8 / 2500) = 200 rad/s, T = 2 pi / 200 = pi / 100 s
-    assert rb.oscillator_frequency(**SPRING) == pytest.approx(200.0, rel=1e-15)
-    assert rb.oscillator_period(**SPRING) == pytest.approx(math.pi / 100.0, rel=1e-15)
+    assert rb.oscillator_frequency(**SPRING) == pytest.approx(200.0, rel=1e-15, abs=0)
+    assert rb.oscillator_period(**SPRING) == pytest.approx(math.pi / 100.0, rel=1e-15, abs=0)
     # 45 degrees, phi = 20: 9.81 * sin45 * (1 - tan20) = 9.81 * 0.7071067812 * 0.6360297657 = 4.411958821 m/s^2
-    assert rb.incline_acceleration(g=9.81, theta_deg=45, phi_deg=20) == pytest.approx(4.411958821, rel=1e-9)
-    assert rb.incline_half_acceleration(g=9.81, theta_deg=45, phi_deg=20) == pytest.approx(2.2059794105, rel=1e-9)
+    assert rb.incline_acceleration(g=9.81, theta_deg=45, phi_deg=20) == pytest.approx(4.411958821, rel=1e-9, abs=0)
+    assert rb.incline_half_acceleration(g=9.81, theta_deg=45, phi_deg=20) == pytest.approx(2.2059794105, rel=1e-9, abs=0)
     # held at 20 degrees: 2500 * 9.81 * sin20 / (1e10 * 1) = 2500 * 9.81 * 0.3420201433 / 1e10 = 8.388044015e-7 m
     assert rb.incline_elastic_slide(mass=2500.0, g=9.81, theta_deg=20.0, ks=1e10, contact_length=1.0) == \
-        pytest.approx(8.388044015e-7, rel=1e-9)
+        pytest.approx(8.388044015e-7, rel=1e-9, abs=0)
     # 20 degrees, phi = 30: friction holds
     assert rb.incline_acceleration(g=9.81, theta_deg=20, phi_deg=30) == 0.0
     # damping xi = 40 / (2 * 200) = 0.1: delta = 2 pi * 0.1 / sqrt(0.99) = 0.6283185307 * 1.0050378153 = 0.6314838834
-    assert rb.log_decrement(alpha=40.0, **SPRING) == pytest.approx(0.6314838834, rel=1e-9)
+    assert rb.log_decrement(alpha=40.0, **SPRING) == pytest.approx(0.6314838834, rel=1e-9, abs=0)
     # constant normal displacement: post-yield slope ks kn tp ts / (ks + kn tp ts)
     us = np.array([1e-3, 2e-3])
     tau, _ = rb.direct_shear_constant_normal_displacement(us, ks=1e9, kn=1e9, sn0=0, cohesion=2e5, phi_deg=30,
                                                           psi_deg=10)
     k = 1e9 * math.tan(math.radians(30)) * math.tan(math.radians(10))
-    assert (tau[1] - tau[0]) / 1e-3 == pytest.approx(1e9 * k / (1e9 + k), rel=1e-9)
+    assert (tau[1] - tau[0]) / 1e-3 == pytest.approx(1e9 * k / (1e9 + k), rel=1e-9, abs=0)
 
 
 # ---------------------------------------------------------------- incline
@@ -80,7 +80,7 @@ def test_known_values():
 def test_incline_with_cohesion():
     # c L / m = 3000 * 1 / 2500 = 1.2 m/s^2 off the frictional 4.411958821: a = 3.211958821
     p = dict(g=9.81, theta_deg=45, phi_deg=20, contact_length=1.0, mass=2500.0)
-    assert rb.incline_acceleration(cohesion=3000.0, **p) == pytest.approx(3.211958821, rel=1e-9)
+    assert rb.incline_acceleration(cohesion=3000.0, **p) == pytest.approx(3.211958821, rel=1e-9, abs=0)
     assert rb.incline_slides(cohesion=3000.0, **p)
     # c = 12000 Pa: 12000 / 2500 = 4.8 > 4.41, the joint holds
     assert rb.incline_acceleration(cohesion=12000.0, **p) == 0.0
@@ -113,7 +113,7 @@ def test_incline_displacement():
     tt = np.linspace(0.0, 2.0, 21)
     x = rb.incline_displacement(tt, g=9.81, theta_deg=45, phi_deg=20)
     slope = np.polyfit(tt ** 2, x, 1)[0]
-    assert slope == pytest.approx(rb.incline_half_acceleration(g=9.81, theta_deg=45, phi_deg=20), rel=1e-12)
+    assert slope == pytest.approx(rb.incline_half_acceleration(g=9.81, theta_deg=45, phi_deg=20), rel=1e-12, abs=0)
     # a block that sticks does not move
     assert np.all(rb.incline_displacement(tt, g=9.81, theta_deg=20, phi_deg=30) == 0.0)
 
@@ -153,7 +153,7 @@ def test_damped_settlement_history_solves_the_equation_of_motion():
     assert np.max(np.abs(residual)) < 1e-3 * 10.0
     assert y(np.array([0.0]))[0] == 0.0
     # from rest under g: y(h) = g h^2 / 2 + O(h^3) = 5e-12 m
-    assert y(np.array([h]))[0] == pytest.approx(5e-12, rel=1e-3)
+    assert y(np.array([h]))[0] == pytest.approx(5e-12, rel=1e-3, abs=0)
 
 
 @REQ
@@ -165,7 +165,7 @@ def test_oscillator_alpha_to_zero_limit():
         # the decay changes y by about d alpha t / 2 <= 2.5e-4 * alpha * 0.1
         assert np.max(np.abs(y - undamped)) < 2.0 * D * alpha * 0.1
     # delta -> pi alpha / w as alpha -> 0
-    assert rb.log_decrement(alpha=1e-6, **SPRING) == pytest.approx(math.pi * 1e-6 / W, rel=1e-12)
+    assert rb.log_decrement(alpha=1e-6, **SPRING) == pytest.approx(math.pi * 1e-6 / W, rel=1e-12, abs=0)
     assert rb.log_decrement(alpha=0.0, **SPRING) == 0.0
 
 
@@ -202,11 +202,11 @@ def test_oscillator_rejects_overdamping():
 def test_central_difference_period():
     # w dt = 1: sin(w_num dt / 2) = 1/2, w_num dt = pi / 3, so the period is exactly 6 steps
     dt = 1.0 / W
-    assert rb.central_difference_period(dt=dt, **SPRING) == pytest.approx(6.0 * dt, rel=1e-14)
+    assert rb.central_difference_period(dt=dt, **SPRING) == pytest.approx(6.0 * dt, rel=1e-14, abs=0)
     # small w dt: asin x = x + x^3 / 6 gives T_num / T = 1 - (w dt)^2 / 24 + O((w dt)^4)
     for wdt in (1e-1, 1e-2):
         shortening = 1.0 - rb.central_difference_period(dt=wdt / W, **SPRING) / rb.oscillator_period(**SPRING)
-        assert shortening == pytest.approx(wdt ** 2 / 24.0, rel=wdt ** 2)
+        assert shortening == pytest.approx(wdt ** 2 / 24.0, rel=wdt ** 2, abs=0)
     with pytest.raises(ValueError):
         rb.central_difference_period(dt=2.0 / W, **SPRING)
 
@@ -260,7 +260,7 @@ def test_central_difference_history_tends_to_the_continuous_solution():
     # v0 / wd ~ d w dt / 2 = 2.5e-4 * 200 * 5e-4 / 2 = 1.25e-5;
     # e^{-alpha t/2} sin wd t peaks at tan wd t = 2 wd / alpha = 9.95, wd t = 1.4706, t = 7.39 ms:
     # e^{-0.1478} * 0.995 = 0.858, so the error is about 1.25e-5 * 0.858 = 1.073e-5
-    assert plain[0] == pytest.approx(1.073e-5, rel=0.03)
+    assert plain[0] == pytest.approx(1.073e-5, rel=0.03, abs=0)
     # and the helper is the plain continuous solution when v0 = 0
     np.testing.assert_allclose(continuous_from_initial_velocity(t, 0.0, alpha=alpha, **BLOCK),
                                rb.oscillator_settlement_history(t, alpha=alpha, **BLOCK), rtol=0, atol=1e-15 * D)
@@ -277,7 +277,7 @@ def test_central_difference_history_decays_at_the_continuous_rate_for_small_dt()
     i = np.nonzero((y[1:-1] > y[:-2]) & (y[1:-1] >= y[2:]) & (y[1:-1] > 0.0))[0] + 1
     assert len(i) >= 3
     delta = np.mean(np.log(y[i][:-1] / y[i][1:]))
-    assert delta == pytest.approx(0.6314838, rel=2e-3)
+    assert delta == pytest.approx(0.6314838, rel=2e-3, abs=0)
 
 
 @REQ
@@ -331,7 +331,7 @@ def test_direct_shear_constant_normal_displacement_continuity_and_slope():
     np.testing.assert_allclose(tau, ks * (us - us_p), rtol=1e-12)
     # elastic branch
     tau, sn = rb.direct_shear_constant_normal_displacement(np.array([1e-4]), **p)
-    assert tau[0] == pytest.approx(1e5, rel=1e-12) and sn[0] == 0.0
+    assert tau[0] == pytest.approx(1e5, rel=1e-12, abs=0) and sn[0] == 0.0
 
 
 @REQ
@@ -345,7 +345,7 @@ def test_direct_shear_constant_normal_displacement_limits():
     # a very stiff normal restraint: the hardening dominates and the slope tends to ks
     tau, _ = rb.direct_shear_constant_normal_displacement(np.array([1e-3, 2e-3]), ks=1e9, kn=1e15, sn0=0, cohesion=2e5,
                                                           phi_deg=30, psi_deg=10)
-    assert (tau[1] - tau[0]) / 1e-3 == pytest.approx(1e9, rel=1e-5)
+    assert (tau[1] - tau[0]) / 1e-3 == pytest.approx(1e9, rel=1e-5, abs=0)
 
 
 @REQ
@@ -354,8 +354,8 @@ def test_direct_shear_coulomb_fracture():
     tau = rb.direct_shear_coulomb_fracture(np.array([0.0, 5e-4, 7.7735e-4, 7.7736e-4, 5e-3]), ks=1e9, sn=1e6,
                                            cohesion=2e5, phi_deg=30.0)
     np.testing.assert_allclose(tau, [0.0, 5e5, 777350.0, 577350.2692, 577350.2692], rtol=1e-9, atol=1e-9)
-    assert rb.coulomb_peak_strength(sn=1e6, cohesion=2e5, phi_deg=30.0) == pytest.approx(777350.2692, rel=1e-10)
-    assert rb.coulomb_residual_strength(sn=1e6, phi_deg=30.0) == pytest.approx(577350.2692, rel=1e-10)
+    assert rb.coulomb_peak_strength(sn=1e6, cohesion=2e5, phi_deg=30.0) == pytest.approx(777350.2692, rel=1e-10, abs=0)
+    assert rb.coulomb_residual_strength(sn=1e6, phi_deg=30.0) == pytest.approx(577350.2692, rel=1e-10, abs=0)
 
 
 @REQ
@@ -398,42 +398,42 @@ def test_critical_frac():
     # dt = FRAC * 2 sqrt(m / K_max), K_max = 1e8 * 1: sqrt(m / K_max) = 1 / 200;
     # w_max dt = 2 -> FRAC = 200 / w_max = 200 / 378.4779428 = 0.5284323797
     frac = rb.critical_frac(width=1.0, height=1.0, density=2500.0, kn=1e8, ks=1e8, typical_length=1.0)
-    assert frac == pytest.approx(0.5284323797, rel=1e-9)
+    assert frac == pytest.approx(0.5284323797, rel=1e-9, abs=0)
     # at that FRAC the fastest mode sits exactly on the stability limit w dt = 2
     p = dict(width=2.0, height=0.5, density=2700.0, kn=3e9, ks=1e9)
     frac = rb.critical_frac(typical_length=0.7, **p)
     dt = frac * 2.0 * math.sqrt(2700.0 * 2.0 * 0.5 / (3e9 * 0.7))
-    assert rb.rigid_block_frequencies(**p)[-1] * dt == pytest.approx(2.0, rel=1e-12)
+    assert rb.rigid_block_frequencies(**p)[-1] * dt == pytest.approx(2.0, rel=1e-12, abs=0)
 
 
 @REQ
 def test_rigid_block_time_step():
     # FRAC 2 sqrt(m / (max(kn, ks) l_typ)) = 0.5 * 2 * sqrt(2500 / (1e8 * 3)) = sqrt(8.3333e-6) = 2.886751346e-3 s
     assert rb.rigid_block_time_step(mass=2500.0, kn=1e8, ks=1e8, typical_length=3.0, frac=0.5) == pytest.approx(
-        2.886751346e-3, rel=1e-9)
+        2.886751346e-3, rel=1e-9, abs=0)
     # the larger of the two stiffnesses governs: 2 * sqrt(2500 / 4e8) = 2 * 2.5e-3 = 5e-3 s
     assert rb.rigid_block_time_step(mass=2500.0, kn=1e8, ks=4e8, typical_length=1.0, frac=1.0) == pytest.approx(
-        5e-3, rel=1e-14)
+        5e-3, rel=1e-14, abs=0)
     # the stability sweep's block (l_typ = 3 m): critical FRAC = 0.5284323797 * sqrt(3) = 0.9152717
     assert rb.critical_frac(width=1.0, height=1.0, density=2500.0, kn=1e8, ks=1e8, typical_length=3.0) == \
-        pytest.approx(0.9152717, rel=1e-7)
+        pytest.approx(0.9152717, rel=1e-7, abs=0)
 
 
 @pytest.mark.requirements("REQ-MOTION-008")
 def test_rayleigh_damping_closed_forms():
     # m = 2500, kn L = 1e8: w = 200 rad/s. alpha = 10, beta = 2.5e-4: xi = 10/400 + 2.5e-4*200/2 = 0.05
     assert rb.rayleigh_damping_ratio(alpha=10.0, beta=2.5e-4, mass=2500.0, kn=1e8, contact_length=1.0) == \
-        pytest.approx(0.05, rel=1e-14)
+        pytest.approx(0.05, rel=1e-14, abs=0)
     # w = 400: 10/800 + 2.5e-4*400/2 = 0.0125 + 0.05 = 0.0625
     assert rb.rayleigh_damping_ratio(alpha=10.0, beta=2.5e-4, mass=2500.0, kn=4e8, contact_length=1.0) == \
-        pytest.approx(0.0625, rel=1e-14)
+        pytest.approx(0.0625, rel=1e-14, abs=0)
     assert rb.rayleigh_log_decrement(alpha=10.0, beta=2.5e-4, mass=2500.0, kn=1e8, contact_length=1.0) == \
-        pytest.approx(2.0 * math.pi * 0.05 / math.sqrt(1.0 - 0.0025), rel=1e-14)
+        pytest.approx(2.0 * math.pi * 0.05 / math.sqrt(1.0 - 0.0025), rel=1e-14, abs=0)
     # alpha = 0 reduces to the mass-damping decrement's form with xi = beta w / 2
     assert rb.rayleigh_log_decrement(alpha=40.0, beta=0.0, mass=2500.0, kn=1e8, contact_length=1.0) == \
-        pytest.approx(rb.log_decrement(alpha=40.0, mass=2500.0, kn=1e8, contact_length=1.0), rel=1e-14)
+        pytest.approx(rb.log_decrement(alpha=40.0, mass=2500.0, kn=1e8, contact_length=1.0), rel=1e-14, abs=0)
     # xi_s = 2.5e-4 * 400 / 2 = 0.05: sqrt(1.0025) - 0.05
     assert rb.stiffness_damping_step_factor(beta=2.5e-4, mass=2500.0, kn=4e8, contact_length=1.0) == \
-        pytest.approx(math.sqrt(1.0025) - 0.05, rel=1e-14)
+        pytest.approx(math.sqrt(1.0025) - 0.05, rel=1e-14, abs=0)
     with pytest.raises(ValueError):
         rb.rayleigh_log_decrement(alpha=1e4, beta=0.0, mass=2500.0, kn=1e8, contact_length=1.0)

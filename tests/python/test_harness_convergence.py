@@ -61,11 +61,11 @@ def test_exact_second_order_sequence_gives_order_two_and_ratio_one():
     assert result.extrapolated == pytest.approx(7.0, abs=1e-12)
     # GCI_fine = Fs |e21 / phi1| / (r^p - 1), r = 2, p = 2
     phi1, phi2 = values[3], values[2]
-    assert result.gci_fine == pytest.approx(1.25 * abs((phi2 - phi1) / phi1) / 3.0, rel=1e-10)
+    assert result.gci_fine == pytest.approx(1.25 * abs((phi2 - phi1) / phi1) / 3.0, rel=1e-10, abs=0)
     assert not result.oscillatory
     record = study(h, error, values)
     assert record["pass"] and record["observed_order"] == pytest.approx(2.0, abs=1e-12)
-    assert record["gci"] == pytest.approx(result.gci_fine, rel=1e-12)
+    assert record["gci"] == pytest.approx(result.gci_fine, rel=1e-12, abs=0)
     assert record["asymptotic_ratio"] == pytest.approx(1.0, abs=1e-12)
     assert record["gci_order"] == pytest.approx(2.0, abs=1e-10)
 
@@ -82,7 +82,7 @@ def test_first_order_and_noisy_sequences():
     noise = [1.05, 0.95, 1.05, 0.95]
     noisy = [v ** 2 * n for v, n in zip(h, noise)]
     expected = least_squares_slope([math.log(v) for v in h], [math.log(e) for e in noisy])
-    assert observed_order(h, noisy) == pytest.approx(expected, rel=1e-12)
+    assert observed_order(h, noisy) == pytest.approx(expected, rel=1e-12, abs=0)
     assert 1.9 < expected < 2.1 and expected != pytest.approx(2.0, abs=1e-3)
     assert math.log(noisy[2] / noisy[3]) / math.log(2.0) != pytest.approx(expected, abs=1e-2)
     # Within the band and outside it.
@@ -98,7 +98,7 @@ def test_the_asymptotic_levels_are_the_finest_ones():
     error[0] *= 10.0
     all_levels = study(h, error)
     assert all_levels["observed_order"] == pytest.approx(least_squares_slope(
-        [math.log(v) for v in h], [math.log(e) for e in error]), rel=1e-12)
+        [math.log(v) for v in h], [math.log(e) for e in error]), rel=1e-12, abs=0)
     assert not all_levels["pass"]
     finest = study(h, error, asymptotic=3)
     assert finest["fit_levels"] == ["L1", "L2", "L3"] and finest["levels"] == ["L0", "L1", "L2", "L3"]
@@ -124,22 +124,22 @@ def test_gci_hand_examples():
     # GCI_12 = 1.25 * 3 / 3 = 1.25, GCI_23 = 1.25 * 12 / 3 = 5, ratio = 5 / (4 * 1.25) = 1
     g = grid_convergence_index([1.0, 2.0, 4.0], [2.0, 5.0, 17.0])
     assert (g.order, g.extrapolated, g.gci_fine, g.asymptotic_ratio) == (
-        pytest.approx(2.0, rel=1e-13), pytest.approx(1.0, rel=1e-13), pytest.approx(0.625, rel=1e-13),
-        pytest.approx(1.0, rel=1e-13))
+        pytest.approx(2.0, rel=1e-13, abs=0), pytest.approx(1.0, rel=1e-13, abs=0), pytest.approx(0.625, rel=1e-13, abs=0),
+        pytest.approx(1.0, rel=1e-13, abs=0))
     assert not g.oscillatory
     # Grids given coarse first give the same answer.
-    assert grid_convergence_index([4.0, 2.0, 1.0], [17.0, 5.0, 2.0]).gci_fine == pytest.approx(0.625, rel=1e-13)
+    assert grid_convergence_index([4.0, 2.0, 1.0], [17.0, 5.0, 2.0]).gci_fine == pytest.approx(0.625, rel=1e-13, abs=0)
     # Oscillatory: phi = 1.0, 1.1, 0.7: e21 = 0.1, e32 = -0.4, s = -1; with r21 = r32, q = 0 and
     # p = ln 4 / ln 2 = 2; extrapolated = (4 * 1 - 1.1) / 3 = 0.9666667.
     g = grid_convergence_index([1.0, 2.0, 4.0], [1.0, 1.1, 0.7])
-    assert (g.order, g.extrapolated) == (pytest.approx(2.0, rel=1e-13), pytest.approx(0.96666666667, rel=1e-10))
+    assert (g.order, g.extrapolated) == (pytest.approx(2.0, rel=1e-13, abs=0), pytest.approx(0.96666666667, rel=1e-10, abs=0))
     assert g.oscillatory
     # f = f0 + C h^2 with unequal ratios, h = 0.1, 0.13, 0.2: the fixed point is p = 2 exactly;
     # extrapolated = f0 = 1; gci_fine = 1.25 C h1^2 / phi1 = 1.25 * 0.005 / 1.005 = 6.2189055e-3.
     h = np.array([0.1, 0.13, 0.2])
     g = grid_convergence_index(h, 1.0 + 0.5 * h ** 2)
-    assert g.order == pytest.approx(2.0, rel=1e-10) and g.extrapolated == pytest.approx(1.0, rel=1e-12)
-    assert g.gci_fine == pytest.approx(6.2189055e-3, rel=1e-7) and g.asymptotic_ratio == pytest.approx(1.0, rel=1e-10)
+    assert g.order == pytest.approx(2.0, rel=1e-10, abs=0) and g.extrapolated == pytest.approx(1.0, rel=1e-12, abs=0)
+    assert g.gci_fine == pytest.approx(6.2189055e-3, rel=1e-7, abs=0) and g.asymptotic_ratio == pytest.approx(1.0, rel=1e-10, abs=0)
     # Celik et al. (2008), Table 1, first column: phi = 6.063, 5.972, 5.863 on r21 = 1.5,
     # r32 = 1.333; printed p = 1.53, phi_ext = 6.1685, GCI_fine = 2.2 %.
     g = grid_convergence_index([1.0, 1.5, 2.0], [6.063, 5.972, 5.863])
@@ -379,10 +379,10 @@ def test_a_second_order_study_passes_end_to_end(full_suite):
     assert study["fit_levels"] == ["h0.25", "h0.125", "h0.0625"]
     assert study["h"] == [0.5, 0.25, 0.125, 0.0625]
     # The fake's relative error is 0.01 h^2 (plus 1e-9 noise).
-    assert study["error"] == pytest.approx([0.01 * h ** 2 for h in study["h"]], rel=1e-3)
+    assert study["error"] == pytest.approx([0.01 * h ** 2 for h in study["h"]], rel=1e-3, abs=0)
     assert study["observed_order"] == pytest.approx(2.0, abs=1e-3)
     assert (study["expected_order"], study["order_tolerance"], study["pass"]) == (2.0, 0.1, True)
-    assert study["gci"] == pytest.approx(1.25 * (0.01 * 0.125 ** 2 - 0.01 * 0.0625 ** 2) / 3.0, rel=1e-3)
+    assert study["gci"] == pytest.approx(1.25 * (0.01 * 0.125 ** 2 - 0.01 * 0.0625 ** 2) / 3.0, rel=1e-3, abs=0)
     assert study["asymptotic_ratio"] == pytest.approx(1.0, abs=1e-3)
     assert len(study["wall_seconds"]) == 4 and all(s > 0 for s in study["wall_seconds"])
     assert study["cycles"] == [round(4010 / h ** 2) for h in study["h"]]
@@ -392,7 +392,7 @@ def test_a_second_order_study_passes_end_to_end(full_suite):
     assert check["error"] == pytest.approx(study["error"][-1])
     assert order["quantity"] == "observed order of final normal force m g" and order["norm"] == "order"
     assert order["numerical"] == study["observed_order"] and order["reference"] == 2.0
-    assert order["error"] == pytest.approx(abs(study["observed_order"] - 2.0)) and order["tolerance"] == 0.1
+    assert order["error"] == pytest.approx(abs(study["observed_order"] - 2.0), rel=1e-12, abs=0) and order["tolerance"] == 0.1
     assert order["pass"] and order["justification"].startswith("The fake's error is 0.01 h^2")
     # One run folder per level, no plain run.
     runs = full_suite["out"] / "runs" / "FX-ORDER-TWO"

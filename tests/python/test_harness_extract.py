@@ -36,25 +36,25 @@ RAMP = results_with(h=(T, 10.0 * T + 1.0))
     ({"kind": "run_meta", "path": "energy.largest_excess"}, 0.125),
 ])
 def test_scalar_extractors(table, expected):
-    assert extract(table, RAMP, 0) == pytest.approx(expected, rel=1e-12)
+    assert extract(table, RAMP, 0) == pytest.approx(expected, rel=1e-12, abs=0)
 
 
 @pytest.mark.requirements("REQ-QA-001")
 def test_fit_t2_returns_the_coefficient_of_t_squared_from_the_window_start_or_t0():
     t = np.linspace(0.0, 2.0, 201)
     results = results_with(x=(t, 3.0 + 2.0 * (t - 0.5) ** 2))
-    assert extract({"kind": "fit_t2", "history": "x", "window": [0.5, 1.5]}, results, 0) == pytest.approx(2.0, rel=1e-12)
-    assert extract({"kind": "fit_t2", "history": "x", "t0": 0.5}, results, 0) == pytest.approx(2.0, rel=1e-12)
+    assert extract({"kind": "fit_t2", "history": "x", "window": [0.5, 1.5]}, results, 0) == pytest.approx(2.0, rel=1e-12, abs=0)
+    assert extract({"kind": "fit_t2", "history": "x", "t0": 0.5}, results, 0) == pytest.approx(2.0, rel=1e-12, abs=0)
     # Without t0 the fit is about the first sample, t = 0, where the curve is not a pure t^2.
-    assert extract({"kind": "fit_t2", "history": "x"}, results, 0) != pytest.approx(2.0, rel=1e-3)
+    assert extract({"kind": "fit_t2", "history": "x"}, results, 0) != pytest.approx(2.0, rel=1e-3, abs=0)
 
 
 @pytest.mark.requirements("REQ-QA-001")
 def test_period_from_upward_crossings_with_interpolation():
     t = np.linspace(0.0, 1.0, 1001)
     results = results_with(y=(t, 5.0 + np.sin(2.0 * np.pi * t / 0.3 + 0.4)))
-    assert extract({"kind": "period", "history": "y"}, results, 0) == pytest.approx(0.3, rel=1e-4)
-    assert extract({"kind": "period", "history": "y", "level": 5.5}, results, 0) == pytest.approx(0.3, rel=1e-4)
+    assert extract({"kind": "period", "history": "y"}, results, 0) == pytest.approx(0.3, rel=1e-4, abs=0)
+    assert extract({"kind": "period", "history": "y", "level": 5.5}, results, 0) == pytest.approx(0.3, rel=1e-4, abs=0)
     with pytest.raises(ExtractError, match="a period needs at least two crossings"):
         extract({"kind": "period", "history": "y", "window": [0.0, 0.2]}, results, 0)
 
@@ -67,9 +67,9 @@ def test_log_decrement_of_a_damped_oscillation():
     # Peaks of e^{-a t} cos(wd t) one damped period apart have the ratio e^{a 2 pi / wd}.
     expected = a * 2.0 * np.pi / wd
     table = {"kind": "log_decrement", "history": "y", "window": [0.0, 1.0]}
-    assert extract(dict(table, level=7.0), results, 0) == pytest.approx(expected, rel=1e-4)
+    assert extract(dict(table, level=7.0), results, 0) == pytest.approx(expected, rel=1e-4, abs=0)
     # The default level is the history's final value, 7 + e^-12, even though the window ends at 1 s.
-    assert extract(table, results, 0) == pytest.approx(expected, rel=1e-3)
+    assert extract(table, results, 0) == pytest.approx(expected, rel=1e-3, abs=0)
 
 
 @pytest.mark.requirements("REQ-QA-001")
@@ -158,7 +158,7 @@ def test_a_history_that_turns_non_finite_is_rejected_whatever_is_read_from_it(ta
 @pytest.mark.requirements("REQ-QA-006")
 def test_crossing_time_is_the_first_upward_crossing():
     # value = 10 t + 1 on t = 0, 0.1, ...: it rises through 3.5 at t = 0.25 (between samples).
-    assert extract({"kind": "crossing_time", "history": "h", "level": 3.5}, RAMP, 0) == pytest.approx(0.25, rel=1e-12)
+    assert extract({"kind": "crossing_time", "history": "h", "level": 3.5}, RAMP, 0) == pytest.approx(0.25, rel=1e-12, abs=0)
     with pytest.raises(ExtractError, match="never rises through 20"):
         extract({"kind": "crossing_time", "history": "h", "level": 20.0}, RAMP, 0)
 
@@ -169,9 +169,9 @@ def test_phase_end_reads_the_last_sample_of_the_phase():
     # sample is t = 0.4 (value 5); phase "b" ends at 0.6 exactly, a sample (value 7).
     results = dict(RAMP, phases=[{"name": "a", "start_time": 0.25, "time": 0.2},
                                  {"name": "b", "start_time": 0.45, "time": 0.15}])
-    assert extract({"kind": "phase_end", "history": "h", "phase": "a"}, results, 0) == pytest.approx(5.0, rel=1e-12)
+    assert extract({"kind": "phase_end", "history": "h", "phase": "a"}, results, 0) == pytest.approx(5.0, rel=1e-12, abs=0)
     assert extract({"kind": "phase_end", "history": "h", "phase": "b", "scale": -1.0}, results, 0) == \
-        pytest.approx(-7.0, rel=1e-12)
+        pytest.approx(-7.0, rel=1e-12, abs=0)
     with pytest.raises(ExtractError, match="no phase 'c'"):
         extract({"kind": "phase_end", "history": "h", "phase": "c"}, results, 0)
     early = dict(RAMP, phases=[{"name": "a", "start_time": -1.0, "time": 0.5}])

@@ -86,8 +86,8 @@ def test_derived_quantity_from_scalar_extracts():
              "params": {"sigma_yy": -1e6},
              "inputs": {"exx": {"kind": "field_mean", "of": "gridpoints", "quantity": "ux", "x": [1.0, 1.0]},
                         "eyy": {"kind": "field_mean", "of": "gridpoints", "quantity": "uy", "y": [1.0, 1.0]}}}
-    assert extract({**table, "component": 0}, results, 0) == pytest.approx(10e9, rel=1e-12)
-    assert extract({**table, "component": 1}, results, 0) == pytest.approx(0.25, rel=1e-12)
+    assert extract({**table, "component": 0}, results, 0) == pytest.approx(10e9, rel=1e-12, abs=0)
+    assert extract({**table, "component": 1}, results, 0) == pytest.approx(0.25, rel=1e-12, abs=0)
 
 
 @REQ
@@ -98,9 +98,9 @@ def test_derived_ratio_of_two_runs():
     table = {"kind": "derived", "function": "ratio",
              "inputs": {"numerator": {"kind": "run_meta", "path": "run.cycles"},
                         "denominator": {"kind": "run_meta", "path": "run.cycles", "variant": "slow"}}}
-    assert extract(table, this, 0, runs) == pytest.approx(0.25, rel=1e-15)
+    assert extract(table, this, 0, runs) == pytest.approx(0.25, rel=1e-15, abs=0)
     # A scale turns a ratio of displacement rates into one of strain rates (lengths 1 m / 2 m).
-    assert extract({**table, "params": {"scale": 2.0}}, this, 0, runs) == pytest.approx(0.5, rel=1e-15)
+    assert extract({**table, "params": {"scale": 2.0}}, this, 0, runs) == pytest.approx(0.5, rel=1e-15, abs=0)
     with pytest.raises(ExtractError, match="reads run 'fast', which did not run"):
         extract({**table, "inputs": {**table["inputs"], "denominator": {"kind": "run_meta", "path": "run.cycles",
                                                                         "variant": "fast"}}}, this, 0, runs)
