@@ -7,14 +7,10 @@
 #include <cstdio>
 #include <sstream>
 
-#include "contact/contact_forces.hpp"
-#include "contact/deformable_outline.hpp"
+#include "boundary/boundary_conditions.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
-#include "motion/gridpoint_motion.hpp"
 #include "motion/rigid_motion.hpp"
-#include "boundary/boundary_conditions.hpp"
-#include "boundary/viscous_boundary.hpp"
 #include "zone/cst.hpp"
 #include "zone/direct_solve.hpp"
 
@@ -58,7 +54,9 @@ constexpr double kReversingFloor = 1e-10;
 }  // namespace
 
 Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histories)
-    : model_(model), settings_(settings), historySpecs_(std::move(histories)) {
+    : model_(model), settings_(settings), historySpecs_(std::move(histories)),
+      run_{model_, settings_, dt_, alpha_, step_, energy_, detection_, motionClock_, largestStepDisplacement_,
+           [this](const ContactStepTotals& t) { checkStiffnessGrowth(t); }} {
   histories_.resize(historySpecs_.size());
   for (std::size_t i = 0; i < historySpecs_.size(); ++i) histories_[i].every = historySpecs_[i].every;
   const Blocks& bl = model_.blocks;
@@ -66,11 +64,12 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   for (int b = 0; b < bl.size(); ++b) hasRigidBlocks_ = hasRigidBlocks_ || !bl.deformable[b];
   hasContacts_ = bl.size() > 1;
   if (hasContacts_) detection_.initialise(model_);
-  // 1.3-30: the smaller of the rigid-block step (blocks that move, through their joints) and
-  // the zone step (1.3-25).
+  components_ = sceneComponents(run_);
+  // 1.3-30: the step is the smallest of the components' limits. The rigid blocks' (1.3-28, blocks
+  // that move, through their joints) is formed first: density scaling sets the zones' to it.
   bool anyFreeRigid = false;
   for (int b = 0; b < bl.size(); ++b) anyFreeRigid = anyFreeRigid || bl.movesFreely(b);
-  const double dtBlocks = anyFreeRigid || !hasZones_ ? rigidBlockTimeStep(model_, settings_.frac) : INFINITY;
+  const double dtBlocks = stepLimitOf("rigid-block-motion");
   if (hasZones_) {
     prepareZones(model_);
     if (settings_.staticSolve) {
@@ -105,7 +104,9 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
         model_.gridpoints.mass[i] = 0.25 * model_.gridpoints.stiffness[i] * step * step;
     }
   }
-  dt_ = std::min(dtBlocks, hasZones_ ? settings_.zoneFraction * zoneTimeStep(model_) : INFINITY);
+  dt_ = dtBlocks;
+  for (const Component& c : components_)
+    if (c.stepLimit && c.name != "rigid-block-motion") dt_ = std::min(dt_, c.stepLimit());
   // Local damping lowers the critical step of central differences from w dt = 2 to
   // 2 / sqrt(1 + alpha_L) (the damping force, a fraction of the out-of-balance force, acts with
   // it whenever the motion runs against the force): the step shrinks by that factor, so that the
@@ -195,67 +196,19 @@ void Cycle::checkDamping(double alpha, const std::string& where) const {
 }
 
 void Cycle::buildStages() {
-  // Only the stages the scene needs: a single deformable block has no contacts, a scene of
-  // rigid blocks no zones. The step's force sums start from zero, in one place. Built again
-  // when a phase changes what is needed; the profile's times carry over by name.
+  // Only the components and stages the scene needs. The step's force sums start from zero, in
+  // one place. Built again when a phase changes what is needed; the profile's times carry over
+  // by name.
   std::vector<Stage> before = std::move(stages_);
   stages_.clear();
-  stages_.push_back({"start-of-step", [this] { model_.clearStepForces(); }, 0.0, false});
-  if (hasContacts_) {
-    stages_.push_back({"contact-detection", [this] {
-                         if (model_.cycle > 0) {
-                           detection_.checkStepReach(model_, dt_, largestStepDisplacement_);
-                           detection_.update(model_, largestStepDisplacement_);
-                         }
-                         motionClock_ += largestStepDisplacement_;
-                       }});
-    stages_.push_back({"contact-forces", [this] {
-                         // As for the zones: before the first step no motion has happened
-                         // for the initial velocities, v(-dt/2), to have displaced the joints.
-                         const ContactStepTotals t =
-                             computeContactForces(model_, model_.cycle == 0 ? 0.0 : dt_, motionClock_,
-                                                  settings_.stiffnessDamping);
-                         checkStiffnessGrowth(t);
-                         detection_.requestRescan(t.passedCorners);
-                         step_.strainEnergy += t.strainEnergy;
-                         energy_.addDissipation(t.slipDissipation, t.jointRelease, 0.0);
-                         step_.dampingDissipation += t.viscousDissipation;
-                         step_.forceScaleSum += t.sumForceMagnitude;
-                         step_.forceCount += t.closedContacts;
-                       }});
-  }
-  if (hasZones_) {
-    // The first step starts from the given configuration and stress: no motion has happened yet
-    // for the initial velocities, v(-dt/2), to have strained the zones.
-    stages_.push_back({"zone-forces", [this] {
-                         const ZoneStepTotals t = computeZoneForces(model_, model_.cycle == 0 ? 0.0 : dt_);
-                         step_.strainEnergy += t.strainEnergy;
-                         energy_.addDissipation(0.0, 0.0, t.plasticDissipation);
-                       }});
-    if (!model_.loadedEdges.empty()) stages_.push_back({"boundary-tractions", [this] { applyEdgeTractions(model_); }});
-    if (!model_.viscousEdges.empty())
-      stages_.push_back({"viscous-boundaries", [this] { applyViscousBoundaries(model_); }});
-    if (!model_.drivenVelocities.empty())
-      stages_.push_back({"boundary-velocities", [this] { applyDrivenVelocities(model_, dt_); }});
-  }
-  if (hasRigidBlocks_) {
-    stages_.push_back({"rigid-block-motion", [this] {
-                         step_.merge(integrateRigidBlocks(model_, dt_, alpha_, settings_.localDamping));
-                       }});
-  }
-  if (hasZones_) {
-    // Deformable blocks' outlines follow their gridpoints at once, so that the next step's
-    // contacts and this step's outputs see the positions just reached.
-    std::vector<int> outlined;
-    for (int b = 0; hasContacts_ && b < model_.blocks.size(); ++b)
-      if (model_.blocks.deformable[b]) outlined.push_back(b);
-    stages_.push_back({"gridpoint-motion", [this, outlined] {
-                         step_.merge(integrateGridpoints(model_, dt_, alpha_, settings_.localDamping));
-                         for (const int b : outlined) placeOutlineVertices(model_, b);
-                       }});
-  }
-  stages_.push_back({"end-of-step", [this] { finishStep(); }, 0.0, false});
-  if (!historySpecs_.empty()) stages_.push_back({"histories", [this] { recordHistories(false); }});
+  components_ = sceneComponents(run_);
+  stages_.push_back({"start-of-step", [this] { model_.clearStepForces(); }, StepPart::Forces, 0.0, false});
+  for (const StepPart part : {StepPart::Forces, StepPart::Motion})
+    for (const Component& c : components_)
+      for (const Stage& stage : c.stages)
+        if (stage.part == part) stages_.push_back(stage);
+  stages_.push_back({"end-of-step", [this] { finishStep(); }, StepPart::Motion, 0.0, false});
+  if (!historySpecs_.empty()) stages_.push_back({"histories", [this] { recordHistories(false); }, StepPart::Motion});
   for (Stage& stage : stages_)
     for (const Stage& old : before)
       if (old.name == stage.name) stage.seconds = old.seconds;
@@ -523,7 +476,8 @@ void Cycle::changeRigidBlocks(const std::vector<RigidBlockChange>& changes) {
   if (!released) return;
   // A released block may be lighter than those the rigid-block step was formed from: form it again
   // over the blocks now free; the step may only shrink.
-  const double dtBlocks = rigidBlockTimeStep(model_, settings_.frac);
+  components_ = sceneComponents(run_);  // the rigid blocks' limit now counts the released one
+  const double dtBlocks = stepLimitOf("rigid-block-motion");
   dt_ = std::min(dt_, dampedStep(dtBlocks));
   contactStepFraction_ = settings_.frac * dt_ / dtBlocks;
 }
@@ -547,8 +501,14 @@ void Cycle::excavate(const ExcavationRegion& region) {
       if (!(g.driven[i] & Excavated)) g.mass[i] = 0.25 * g.stiffness[i] * densityStep_ * densityStep_;
   } else if (model_.zones.size() > 0) {
     // A gridpoint that lost zones may have lost more mass than stiffness: the step may only shrink.
-    dt_ = std::min(dt_, dampedStep(settings_.zoneFraction * zoneTimeStep(model_)));
+    dt_ = std::min(dt_, dampedStep(stepLimitOf("deformable-blocks")));
   }
+}
+
+double Cycle::stepLimitOf(std::string_view component) const {
+  for (const Component& c : components_)
+    if (c.name == component && c.stepLimit) return c.stepLimit();
+  return INFINITY;
 }
 
 void Cycle::stepUntil(const StopCriteria& stop, std::string& reason) {

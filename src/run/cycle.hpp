@@ -1,66 +1,24 @@
 #pragma once
-// The time loop: one step is a fixed sequence of named stages chosen once from the scene.
-// A stage is one indirect call per step; inside it, loops run over plain arrays.
+// The time loop: one step is the stages of the scene's components (run/component.hpp), their
+// force stages and then their motion stages, between the step's own bookkeeping; the time step
+// is the smallest of the components' limits.
 #include <chrono>
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "contact/contact_detection.hpp"
 #include "contact/contact_forces.hpp"
+#include "core/model.hpp"
+#include "run/component.hpp"
 #include "run/energy_ledger.hpp"
 #include "run/history.hpp"
-#include "core/model.hpp"
-#include "motion/motion_totals.hpp"
+#include "run/run_settings.hpp"
 #include "zone/excavation.hpp"
 
 namespace vdec {
-
-struct StopCriteria {
-  long long cycles = -1;  // < 0: not set
-  double time = -1.0;
-  double ratio = -1.0;
-};
-
-// A joint material's strength changed at the start of a phase (Coulomb laws only).
-struct JointStrengthChange {
-  int material = -1;
-  std::optional<double> tanFriction, cohesion, tension;
-};
-
-// A rigid block's degrees of freedom and loads changed at the start of a phase.
-struct RigidBlockChange {
-  int block = -1;
-  std::uint8_t fix = 0;             // DriveX / DriveY / DriveRotation bits driven from now on
-  std::uint8_t free = 0;            // bits released, moving on from their present velocity
-  Vec2 velocity;                    // of the components in `fix` (zero: held still)
-  double angularVelocity = 0.0;
-  std::optional<Vec2> force;        // replaces the applied force
-  std::optional<double> moment;     // replaces the applied moment
-};
-
-// What a phase changes before its first step. Unset members keep the state of the phase before.
-struct PhaseChanges {
-  std::optional<Vec2> gravity;
-  std::vector<JointStrengthChange> joints;
-  std::optional<double> massDamping;     // switches adaptive damping off
-  std::optional<bool> adaptiveDamping;
-  std::vector<RigidBlockChange> blocks;
-  std::vector<std::pair<int, MohrCoulombProperties>> blockStrengths;  // block material -> its new strength
-  std::vector<ExcavationRegion> excavations;     // zones removed first, in order
-  std::vector<std::string> freeBoundaries;       // names of active boundary conditions taken off
-  std::vector<BoundaryCondition> boundaries;      // then applied, their histories from the phase's start
-  bool resetDisplacements = false;       // displacement histories and outputs measured from here
-  bool resetVelocities = false;
-};
-
-struct Phase {
-  std::string name;
-  StopCriteria stop;                 // counted from the phase's start
-  bool requireEquilibrium = false;   // ending on cycles or time is then an error
-  PhaseChanges changes;
-};
 
 struct PhaseReport {
   std::string name;
@@ -76,28 +34,6 @@ void visitState(A& a, PhaseReport& p) {
   a(p.name), a(p.stopReason), a(p.startCycle), a(p.cycles), a(p.startTime), a(p.time), a(p.unbalancedRatio);
   a(p.wallSeconds);
 }
-
-struct RunSettings {
-  double frac = 0.1;          // FRAC of 1.3-28
-  // The zone step as a fraction of 1.3-25's estimate of the critical one (the estimate already
-  // has a margin); for stability studies.
-  double zoneFraction = 1.0;
-  double massDamping = 0.0;   // alpha of 1.3-21, 1/s
-  double stiffnessDamping = 0.0;  // beta of 1.3-22 on the joints' springs, s (Rayleigh with alpha)
-  bool adaptiveDamping = false;  // alpha by the servo of 1.3-23 instead
-  double localDamping = 0.0;     // alpha_L of local damping (motion_totals.hpp), instead of mass damping
-  bool densityScaling = false;   // gridpoint inertial masses scaled to one step (1.3-32 to 1.3-34)
-  bool staticSolve = false;      // start from the direct solution of the elastic zones (zone/direct_solve)
-  StopCriteria stop;
-  // Run in order; empty: one stage of the run, to `stop`.
-  std::vector<Phase> phases;
-  bool profile = false;
-  bool progress = false;
-  // Snapshots: the caller's writer is called at the start, every `snapshotEvery` cycles and at
-  // the end (0: never).
-  long long snapshotEvery = 0;
-  std::function<void(const Model&)> snapshot;
-};
 
 struct StageTiming {
   std::string name;
@@ -132,6 +68,9 @@ struct RunReport {
 class Cycle {
  public:
   Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histories);
+  // The components' stages hold references into the cycle (run_).
+  Cycle(const Cycle&) = delete;
+  Cycle& operator=(const Cycle&) = delete;
   // Runs to a stop criterion. Numerical trouble (instability, overlap) ends the run early with
   // report.error and report.errorCode set, so that the histories up to it can still be written.
   RunReport run();
@@ -154,16 +93,6 @@ class Cycle {
   double massDamping() const { return alpha_; }
 
  private:
-  struct Stage {
-    std::string name;
-    std::function<void()> step;
-    double seconds = 0.0;
-    bool listed = true;  // false for the step's own bookkeeping, which is no model stage
-  };
-  // Sums the stages of one step contribute to, closed by finishStep.
-  struct StepTotals : MotionStepTotals {
-    double strainEnergy = 0.0;
-  };
   void buildStages();
   void finishStep();
   void adaptDamping(const StepTotals& totals);
@@ -177,6 +106,8 @@ class Cycle {
   void checkDamping(double alpha, const std::string& where) const;
   // A step formed without damping, reduced for local and stiffness-proportional damping.
   double dampedStep(double step) const;
+  // The named component's limit on the step (s); infinite when it has none or is not in the scene.
+  double stepLimitOf(std::string_view component) const;
   void excavate(const ExcavationRegion& region);
   void changeRigidBlocks(const std::vector<RigidBlockChange>& changes);
   void closePhase(PhaseReport& done, std::chrono::steady_clock::time_point started) const;
@@ -216,6 +147,10 @@ class Cycle {
   int firstPhase_ = 0;
   std::vector<PhaseReport> donePhases_;  // restored with the state: the phases before firstPhase_
   Monitors monitors_;
+  // What the components' stages see of the run (after the members it refers to), and the
+  // components themselves.
+  RunContext run_;
+  std::vector<Component> components_;
 };
 
 }  // namespace vdec

@@ -106,7 +106,7 @@ SceneDefinition plateDefinition() {
 }  // namespace
 
 TEST(SceneBuilder, ARigidSceneInCodeIsTheSceneReadFromToml) {
-  VDEC_REQUIREMENTS("REQ-RUN-003");
+  VDEC_REQUIREMENTS("REQ-RUN-007");
   const Scene read = sceneFromText(blockOnBase(), "builder-rigid");
   const Scene built = buildScene(blockOnBaseDefinition());
   EXPECT_TRUE(modelBytes(built.model) == modelBytes(read.model));
@@ -119,7 +119,7 @@ TEST(SceneBuilder, ARigidSceneInCodeIsTheSceneReadFromToml) {
 }
 
 TEST(SceneBuilder, AZonedSceneWithBoundariesInCodeIsTheSceneReadFromToml) {
-  VDEC_REQUIREMENTS("REQ-RUN-003");
+  VDEC_REQUIREMENTS("REQ-RUN-007");
   const Scene read = sceneFromText(kPlate, "builder-plate");
   const Scene built = buildScene(plateDefinition());
   ASSERT_EQ(built.model.zones.size(), 32);
@@ -131,7 +131,7 @@ TEST(SceneBuilder, AZonedSceneWithBoundariesInCodeIsTheSceneReadFromToml) {
 }
 
 TEST(SceneBuilder, ErrorsOnDefinitionsMadeInCodeNameTheDefinitionAndTheKey) {
-  VDEC_REQUIREMENTS("REQ-RUN-003");
+  VDEC_REQUIREMENTS("REQ-RUN-007");
   SceneDefinition material = blockOnBaseDefinition();
   material.blocks[1].material = "granite";
   EXPECT_EQ(buildError(material), "key 'block 'top'.material': no block material named 'granite'");

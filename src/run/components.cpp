@@ -1,0 +1,113 @@
+// Each component's stages and step limit, as sceneComponents gives them to the cycle.
+#include <cmath>
+
+#include "boundary/boundary_conditions.hpp"
+#include "boundary/viscous_boundary.hpp"
+#include "contact/deformable_outline.hpp"
+#include "motion/gridpoint_motion.hpp"
+#include "motion/rigid_motion.hpp"
+#include "run/component.hpp"
+#include "zone/cst.hpp"
+
+namespace vdec {
+
+namespace {
+
+bool anyRigidBlock(const Model& m) {
+  for (int b = 0; b < m.blocks.size(); ++b)
+    if (!m.blocks.deformable[b]) return true;
+  return false;
+}
+
+Component contacts(RunContext& run) {
+  Component c{"contacts", {}, {}};
+  c.stages.push_back({"contact-detection", [&run] {
+                        if (run.model.cycle > 0) {
+                          run.detection.checkStepReach(run.model, run.dt, run.largestStepDisplacement);
+                          run.detection.update(run.model, run.largestStepDisplacement);
+                        }
+                        run.motionClock += run.largestStepDisplacement;
+                      }});
+  c.stages.push_back({"contact-forces", [&run] {
+                        // As for the zones: before the first step no motion has happened for the
+                        // initial velocities, v(-dt/2), to have displaced the joints.
+                        const ContactStepTotals t = computeContactForces(
+                            run.model, run.model.cycle == 0 ? 0.0 : run.dt, run.motionClock, run.settings.stiffnessDamping);
+                        run.checkStiffnessGrowth(t);
+                        run.detection.requestRescan(t.passedCorners);
+                        run.step.strainEnergy += t.strainEnergy;
+                        run.energy.addDissipation(t.slipDissipation, t.jointRelease, 0.0);
+                        run.step.dampingDissipation += t.viscousDissipation;
+                        run.step.forceScaleSum += t.sumForceMagnitude;
+                        run.step.forceCount += t.closedContacts;
+                      }});
+  return c;
+}
+
+// Tractions, dashpots and driven velocities of the boundary conditions in force: a stage for each
+// kind there is.
+Component boundaries(RunContext& run) {
+  Component c{"boundaries", {}, {}};
+  const Model& m = run.model;
+  if (!m.loadedEdges.empty()) c.stages.push_back({"boundary-tractions", [&run] { applyEdgeTractions(run.model); }});
+  if (!m.viscousEdges.empty()) c.stages.push_back({"viscous-boundaries", [&run] { applyViscousBoundaries(run.model); }});
+  if (!m.drivenVelocities.empty())
+    c.stages.push_back({"boundary-velocities", [&run] { applyDrivenVelocities(run.model, run.dt); }});
+  return c;
+}
+
+Component rigidMotion(RunContext& run) {
+  // 1.3-28 through the joints of the blocks that move; with zones and no free rigid block the
+  // zones' step (which includes the joints' stiffness at gridpoints) decides.
+  const Model& m = run.model;
+  bool anyFree = false;
+  for (int b = 0; b < m.blocks.size(); ++b) anyFree = anyFree || m.blocks.movesFreely(b);
+  Component c{"rigid-block-motion", {}, {}};
+  if (anyFree || m.zones.size() == 0) c.stepLimit = [&run] { return rigidBlockTimeStep(run.model, run.settings.frac); };
+  c.stages.push_back({"rigid-block-motion",
+                      [&run] {
+                        run.step.merge(integrateRigidBlocks(run.model, run.dt, run.massDamping, run.settings.localDamping));
+                      },
+                      StepPart::Motion});
+  return c;
+}
+
+// Zones (forces) and gridpoints (motion) of the deformable blocks; the zone step (1.3-25).
+Component deformableBlocks(RunContext& run) {
+  Component c{"deformable-blocks", {}, [&run] { return run.settings.zoneFraction * zoneTimeStep(run.model); }};
+  // The first step starts from the given configuration and stress: no motion has happened yet
+  // for the initial velocities, v(-dt/2), to have strained the zones.
+  c.stages.push_back({"zone-forces", [&run] {
+                        const ZoneStepTotals t = computeZoneForces(run.model, run.model.cycle == 0 ? 0.0 : run.dt);
+                        run.step.strainEnergy += t.strainEnergy;
+                        run.energy.addDissipation(0.0, 0.0, t.plasticDissipation);
+                      }});
+  // Deformable blocks' outlines follow their gridpoints at once, so that the next step's
+  // contacts and this step's outputs see the positions just reached.
+  std::vector<int> outlined;
+  for (int b = 0; run.model.blocks.size() > 1 && b < run.model.blocks.size(); ++b)
+    if (run.model.blocks.deformable[b]) outlined.push_back(b);
+  c.stages.push_back({"gridpoint-motion",
+                      [&run, outlined] {
+                        run.step.merge(integrateGridpoints(run.model, run.dt, run.massDamping, run.settings.localDamping));
+                        for (const int b : outlined) placeOutlineVertices(run.model, b);
+                      },
+                      StepPart::Motion});
+  return c;
+}
+
+}  // namespace
+
+std::vector<Component> sceneComponents(RunContext& run) {
+  const Model& m = run.model;
+  std::vector<Component> components;
+  if (m.blocks.size() > 1) components.push_back(contacts(run));
+  if (anyRigidBlock(m)) components.push_back(rigidMotion(run));
+  if (m.zones.size() > 0) {
+    components.push_back(deformableBlocks(run));
+    components.push_back(boundaries(run));
+  }
+  return components;
+}
+
+}  // namespace vdec
