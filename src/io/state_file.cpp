@@ -50,7 +50,11 @@ void visitState(A& a, Header& h) {
 void writeState(const std::string& path, const Scene& scene, Model& model, Cycle& cycle, int phasesDone) {
   Header header;
   header.layoutHash = sha256Hex(layout());
-  header.sceneHash = scene.phasePrefixSha256.at(phasesDone);
+  // A scene built in code has no file whose phases a restart could check against.
+  if (static_cast<std::size_t>(phasesDone) >= scene.phasePrefixSha256.size())
+    throw RestartError("a scene built in code (not read from a file) cannot be saved: its phases have no SHA-256 for a "
+                       "restart to check");
+  header.sceneHash = scene.phasePrefixSha256[phasesDone];
   header.software = std::string(build::version) + " " + build::gitCommit;
   header.phasesDone = static_cast<std::uint32_t>(phasesDone);
   header.phaseName = scene.settings.phases.at(phasesDone - 1).name;

@@ -1,5 +1,5 @@
 // libFuzzer target of the scene reader: each input is written to a scene file and read by
-// readScene (and the deformable-block reader it calls). A defect by scene_reader_check.hpp's
+// readScene (the section parsers, then the builder). A defect by scene_reader_check.hpp's
 // rule aborts, so libFuzzer keeps the input; so do sanitizer findings and signals.
 // Built by -DVDEC_FUZZ=ON with clang; run by scripts/fuzz.sh (docs/verification.md).
 #include <unistd.h>

@@ -6,6 +6,8 @@
 
 #include "core/errors.hpp"
 #include "core/model_state.hpp"
+#include "io/state_file.hpp"
+#include "run/cycle.hpp"
 #include "requirements.hpp"
 #include "scene_fixture.hpp"
 
@@ -151,4 +153,22 @@ TEST(SceneBuilder, ErrorsOnDefinitionsMadeInCodeNameTheDefinitionAndTheKey) {
   SceneDefinition empty;
   empty.model.rounding = 0.01;
   EXPECT_NE(buildError(empty).find("the scene has no blocks"), std::string::npos);
+}
+
+TEST(SceneBuilder, ASceneBuiltInCodeIsNotSavedForARestart) {
+  VDEC_REQUIREMENTS("REQ-RUN-007");
+  SceneDefinition definition = blockOnBaseDefinition();
+  PhaseDefinition& phase = definition.phases.emplace_back();
+  phase.name = "settle";
+  phase.stop.cycles = 2;
+  Scene scene = buildScene(definition);
+  Cycle cycle(scene.model, scene.settings, {});
+  cycle.run();
+  const std::string path = (vdec::testing::unitTestFolder() / "built-in-code.vdecstate").string();
+  try {
+    writeState(path, scene, scene.model, cycle, 1);
+    FAIL() << "saved";
+  } catch (const RestartError& e) {
+    EXPECT_NE(std::string(e.what()).find("a scene built in code"), std::string::npos) << e.what();
+  }
 }
