@@ -75,6 +75,15 @@ PhaseDefinition readPhase(TableReader& r, std::vector<std::string>& warnings) {
     r.fail("mass_damping", "give mass_damping or adaptive_damping, not both");
   if (r.has("mass_damping")) d.massDamping = r.nonNegative("mass_damping", 0.0);
   if (r.has("adaptive_damping")) d.adaptiveDamping = r.boolean("adaptive_damping", false);
+  if (r.has("local_damping")) {
+    d.localDamping = r.number("local_damping");
+    if (!(*d.localDamping >= 0.0 && *d.localDamping < 1.0))
+      r.fail("local_damping", "must lie in [0, 1): the fraction of each out-of-balance force turned against the "
+                              "motion (0.8 is the usual value; 0 switches local damping off)");
+    if (*d.localDamping > 0.0 && (r.has("mass_damping") || d.adaptiveDamping.value_or(false)))
+      r.fail("local_damping", "replaces mass damping; give local_damping or mass_damping / adaptive_damping, not both");
+  }
+  d.staticSolve = r.boolean("static_solve", false);
   for (const std::string& what : r.has("reset") ? r.strings("reset") : std::vector<std::string>{}) {
     if (what == "displacements") d.resetDisplacements = true;
     else if (what == "velocities") d.resetVelocities = true;

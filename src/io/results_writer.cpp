@@ -161,6 +161,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
     if (!b.dashpots.empty()) j["energy"]["boundary_dissipation"] = report.energy.boundaryDissipation;
   if (!report.phases.empty()) {
     j["energy"]["removed"] = report.energy.removed;
+    for (const Phase& phase : scene.settings.phases)
+      if (phase.changes.staticSolve) j["energy"]["static_solve"] = report.energy.staticSolve;
     json phases = json::array();
     for (const PhaseReport& p : report.phases)
       phases.push_back({{"name", p.name},

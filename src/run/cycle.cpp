@@ -119,6 +119,7 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
     const double xi = 0.5 * settings_.stiffnessDamping * w;
     stiffnessDampingStepFactor_ = std::sqrt(1.0 + xi * xi) - xi;
   }
+  undampedStep_ = dt_;
   dt_ = dampedStep(dt_);
   // The step as a fraction of the critical step of the stiffest joint spring on the lightest
   // free block (kinematic tests, with every block driven, have no such mode).
@@ -387,6 +388,16 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
     if (change.cohesion) j.cohesion = *change.cohesion;
     if (change.tension) j.tension = *change.tension;
   }
+  if (changes.localDamping) {
+    settings_.localDamping = *changes.localDamping;
+    if (settings_.localDamping > 0.0) {
+      settings_.adaptiveDamping = false;
+      alpha_ = servoPower_ = servoRate_ = 0.0;
+    }
+    // Local damping lowers the critical step (dampedStep); the step may only shrink.
+    dt_ = std::min(dt_, dampedStep(undampedStep_));
+  }
+  if (changes.adaptiveDamping || changes.massDamping) settings_.localDamping = 0.0;
   if (changes.adaptiveDamping) {
     settings_.adaptiveDamping = *changes.adaptiveDamping;
     alpha_ = settings_.adaptiveDamping ? kAdaptiveStart / dt_ : 0.0;
@@ -436,6 +447,42 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
     }
     for (int i = 0; i < g.size(); ++i) g.initialPosition[i] = g.position[i];
   }
+  if (changes.staticSolve) solveDirectly();
+}
+
+double Cycle::storedElasticEnergy() const {
+  const Gridpoints& g = model_.gridpoints;
+  const Zones& zn = model_.zones;
+  double stored = 0.0;
+  for (const Contact& c : model_.contacts) stored += c.springEnergy;
+  for (int z = 0; z < zn.size(); ++z) {
+    const BlockMaterial& mat = model_.blockMaterials[zn.material[z]];
+    const auto& n = zn.gridpoint[z];
+    const double area = 0.5 * cross(g.position[n[1]] - g.position[n[0]], g.position[n[2]] - g.position[n[0]]);
+    stored += area * elasticEnergyDensity(zn.sxx[z], zn.syy[z], zn.sxy[z], zn.szz[z], mat.bulk, mat.shear);
+  }
+  return stored;
+}
+
+void Cycle::solveDirectly() {
+  // The solve leaves the gridpoints at rest: their kinetic energy leaves without work. The
+  // elastic energy it sets up is supplied without its work being counted (the loads' work over
+  // the solve's displacement exceeds it by what relaxation would have dissipated).
+  const Gridpoints& g = model_.gridpoints;
+  double kinetic = 0.0;
+  for (int i = 0; i < g.size(); ++i) kinetic += 0.5 * g.mass[i] * dot(g.velocity[i], g.velocity[i]);
+  energy_.withdraw(kinetic);
+  const double before = storedElasticEnergy();
+  const DirectSolveReport solved = solveStaticDirect(model_);
+  staticSolveSeconds_ = std::max(staticSolveSeconds_, 0.0) + solved.seconds;
+  staticSolveResidual_ = solved.relativeResidual;
+  energy_.supplyByDirectSolve(storedElasticEnergy() - before);
+  // The solve moved the blocks without the detection's motion bounds: look again everywhere.
+  if (hasContacts_) {
+    std::vector<int> all(model_.blocks.size());
+    for (int b = 0; b < model_.blocks.size(); ++b) all[b] = b;
+    detection_.requestRescan(all);
+  }
 }
 
 void Cycle::closePhase(PhaseReport& done, Clock::time_point started) const {
@@ -478,6 +525,7 @@ void Cycle::changeRigidBlocks(const std::vector<RigidBlockChange>& changes) {
   // over the blocks now free; the step may only shrink.
   components_ = sceneComponents(run_);  // the rigid blocks' limit now counts the released one
   const double dtBlocks = stepLimitOf("rigid-block-motion");
+  undampedStep_ = std::min(undampedStep_, dtBlocks);
   dt_ = std::min(dt_, dampedStep(dtBlocks));
   contactStepFraction_ = settings_.frac * dt_ / dtBlocks;
 }
@@ -501,6 +549,7 @@ void Cycle::excavate(const ExcavationRegion& region) {
       if (!(g.driven[i] & Excavated)) g.mass[i] = 0.25 * g.stiffness[i] * densityStep_ * densityStep_;
   } else if (model_.zones.size() > 0) {
     // A gridpoint that lost zones may have lost more mass than stiffness: the step may only shrink.
+    undampedStep_ = std::min(undampedStep_, stepLimitOf("deformable-blocks"));
     dt_ = std::min(dt_, dampedStep(stepLimitOf("deformable-blocks")));
   }
 }

@@ -87,7 +87,7 @@ class Cycle {
     a(meanContactForce_), a(largestUnbalanced_), a(step_), a(reversing_), a(alpha_), a(servoPower_), a(servoRate_);
     a(staticSolveSeconds_), a(staticSolveResidual_), a(energy_), a(monitors_), a(histories_);
     a(settings_.adaptiveDamping), a(settings_.massDamping), a(donePhases_), a(densityStep_), a(historySpecs_),
-      a(stiffnessDampingStepFactor_);
+      a(stiffnessDampingStepFactor_), a(undampedStep_), a(settings_.localDamping);
     detection_.visitState(a);
   }
   double massDamping() const { return alpha_; }
@@ -109,6 +109,9 @@ class Cycle {
   // The named component's limit on the step (s); infinite when it has none or is not in the scene.
   double stepLimitOf(std::string_view component) const;
   void excavate(const ExcavationRegion& region);
+  // A phase's direct solve of the elastic zones (zone/direct_solve), with its energy account.
+  void solveDirectly();
+  double storedElasticEnergy() const;
   void changeRigidBlocks(const std::vector<RigidBlockChange>& changes);
   void closePhase(PhaseReport& done, std::chrono::steady_clock::time_point started) const;
   void printProgress(bool final) const;
@@ -139,6 +142,7 @@ class Cycle {
   double alpha_ = 0.0;                       // mass damping in use, 1/s
   double densityStep_ = 0.0;                 // the step density scaling formed the masses for
   double stiffnessDampingStepFactor_ = 1.0;
+  double undampedStep_ = 0.0;  // the smallest of the components' limits, before dampedStep
   double servoPower_ = 0.0, servoRate_ = 0.0;
   double staticSolveSeconds_ = -1.0;
   double staticSolveResidual_ = -1.0;

@@ -17,6 +17,7 @@ struct EnergyReport {
   double jointRelease = 0.0;       // elastic energy joints gave up without work (breakage, length)
   double plasticDissipation = 0.0; // by Mohr-Coulomb zones
   double removed = 0.0;            // taken out without work between phases (resets, excavation)
+  double staticSolve = 0.0;        // elastic energy set up by phases' direct solves, supplied without work
   double dampingDissipation = 0.0; // by mass damping
   double boundaryDissipation = 0.0; // by viscous boundaries
   double largestExcess = 0.0;      // max over the run of (kinetic + strain - supplied) / largest supplied
@@ -43,6 +44,11 @@ class EnergyLedger {
     terms_.strain = strain;
   }
   void supplyHalf(double work) { supplied_ += 0.5 * work; }
+  // Elastic energy a phase's direct solve set up (its loads' work is not formed).
+  void supplyByDirectSolve(double energy) {
+    supplied_ += energy;
+    terms_.staticSolve += energy;
+  }
   // Energy taken out of the model without work (velocities reset between phases).
   void withdraw(double energy) {
     supplied_ -= energy;

@@ -40,8 +40,9 @@ struct RigidBlockChange {
 struct PhaseChanges {
   std::optional<Vec2> gravity;
   std::vector<JointStrengthChange> joints;
-  std::optional<double> massDamping;     // switches adaptive damping off
-  std::optional<bool> adaptiveDamping;
+  std::optional<double> massDamping;     // switches adaptive and local damping off
+  std::optional<bool> adaptiveDamping;   // true switches local damping off
+  std::optional<double> localDamping;    // alpha_L; > 0 switches mass and adaptive damping off, 0 switches it off
   std::vector<RigidBlockChange> blocks;
   std::vector<std::pair<int, MohrCoulombProperties>> blockStrengths;  // block material -> its new strength
   std::vector<ExcavationRegion> excavations;     // zones removed first, in order
@@ -49,6 +50,7 @@ struct PhaseChanges {
   std::vector<BoundaryCondition> boundaries;      // then applied, their histories from the phase's start
   bool resetDisplacements = false;       // displacement histories and outputs measured from here
   bool resetVelocities = false;
+  bool staticSolve = false;  // after the changes, solve the elastic zones' equilibrium directly
 };
 
 struct Phase {

@@ -53,6 +53,8 @@ Phase buildPhase(const PhaseDefinition& d, Model& m, std::optional<Model>& geome
   c.adaptiveDamping = d.adaptiveDamping;
   c.resetDisplacements = d.resetDisplacements;
   c.resetVelocities = d.resetVelocities;
+  c.localDamping = d.localDamping;
+  c.staticSolve = d.staticSolve;
   for (const JointStrengthDefinition& j : d.jointStrengths) c.joints.push_back(jointStrength(m, j));
   for (const std::string& name : d.free) {
     if (!active.erase(name))

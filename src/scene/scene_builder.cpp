@@ -329,6 +329,29 @@ void checkModelWide(const Model& m, const SceneDefinition& s) {
                                   "a rigid block (the rigid-block time step, 1.3-28, takes the joint stiffness)");
 }
 
+// A phase's switch to local damping or its direct solve, against the run's settings and the
+// model as the phase will find it (`plastic`: the block materials then Mohr-Coulomb).
+void checkPhaseSolver(const PhaseDefinition& d, const Model& m, const RunSettings& settings,
+                      const std::vector<char>& plastic) {
+  if (d.localDamping.value_or(0.0) > 0.0 && settings.stiffnessDamping > 0.0)
+    d.origin.fail("local_damping", "the run has stiffness-proportional damping (solver.stiffness_damping or "
+                                   "solver.rayleigh), which goes with mass damping, not with local damping");
+  if (!d.staticSolve) return;
+  for (int b = 0; b < m.blocks.size(); ++b)
+    if (!m.blocks.deformable[b])
+      d.origin.fail("static_solve", "the direct solve covers deformable blocks only; block '" + m.blocks.name[b] +
+                                        "' is rigid");
+  for (const JointMaterial& j : m.jointMaterials)
+    if (j.law == JointLaw::ContinuouslyYielding)
+      d.origin.fail("static_solve", "the direct solve takes joints as linear springs, and joint material '" + j.name +
+                                        "' is continuously yielding; relax the phase with explicit cycles instead");
+  for (std::size_t i = 0; i < plastic.size(); ++i)
+    if (plastic[i])
+      d.origin.fail("static_solve", "the direct solve is elastic, and block material '" + m.blockMaterials[i].name +
+                                        "' is Mohr-Coulomb when the phase starts: its answer could lie far beyond "
+                                        "yield; relax the phase with explicit cycles instead");
+}
+
 void applyInitialStress(Model& m, const InitialStressDefinition& d) {
   if (m.zones.size() == 0) d.origin.failTable("needs deformable blocks: it sets the stress of zones");
   const auto& s = d.stress;
@@ -463,10 +486,14 @@ Scene buildScene(SceneDefinition s) {
   for (const BoundaryCondition& b : m.boundaryConditions)
     if (!b.name.empty()) active.insert(b.name);
   std::optional<Model> excavated;  // a copy of the model, excavated as the phases will, once one does
+  std::vector<char> plastic;  // block materials Mohr-Coulomb by the phase at hand
+  for (const BlockMaterial& mat : m.blockMaterials) plastic.push_back(mat.plastic);
   for (const PhaseDefinition& d : s.phases) {
     for (const Phase& before : scene.settings.phases)
       if (before.name == d.name) d.origin.fail("name", "phase '" + d.name + "' is defined twice");
     scene.settings.phases.push_back(buildPhase(d, m, excavated, active));
+    for (const auto& [material, strength] : scene.settings.phases.back().changes.blockStrengths) plastic[material] = 1;
+    checkPhaseSolver(d, m, s.settings, plastic);
   }
   if (s.initialStress) applyInitialStress(m, *s.initialStress);
   for (const JointAssignmentDefinition& d : s.jointAssignments) assignJoint(m, d);

@@ -156,7 +156,9 @@ struct PhaseDefinition {
   std::optional<Vec2> gravity;
   std::optional<double> massDamping;
   std::optional<bool> adaptiveDamping;
+  std::optional<double> localDamping;  // 0: off
   bool resetDisplacements = false, resetVelocities = false;
+  bool staticSolve = false;
   std::vector<JointStrengthDefinition> jointStrengths;
   std::vector<std::string> free;  // names of active boundaries taken off
   std::vector<BlockStrengthDefinition> blockStrengths;

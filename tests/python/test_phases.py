@@ -296,3 +296,120 @@ circle = { centre = [0.5, 1.1], radius = 0.15 }
 """)
     assert done.returncode == 4, done.stderr
     assert "[phase[1].excavation[0]] removes a zone of block 'upper' at the block's outline" in done.stderr
+
+
+COLUMN = """
+title = "an elastic column under its own weight, held in uniaxial strain"
+[model]
+rounding = 0.01
+[[block_material]]
+name = "rock"
+density = 2000.0
+bulk = 5e9
+shear = 3e9
+[[block]]
+name = "column"
+material = "rock"
+vertices = [[0.0, 0.0], [1.0, 0.0], [1.0, 4.0], [0.0, 4.0]]
+zoning = { nx = 2, ny = 8 }
+[[boundary]]
+block = "column"
+y = [0.0, 0.0]
+fix = ["y"]
+[[boundary]]
+block = "column"
+x = [0.0, 0.0]
+fix = ["x"]
+[[boundary]]
+block = "column"
+x = [1.0, 1.0]
+fix = ["x"]
+[[history]]
+name = "top"
+quantity = "gridpoint.displacement_y"
+block = "column"
+point = [0.5, 4.0]
+every = 1
+"""
+# The top of a column of height H held laterally and at its base sinks rho g H^2 / (2 M) under its
+# own weight, M = K + 4 G / 3 (uniaxial strain). The crossed zoning represents the column's linear
+# stress; the solver works on the moving configuration, the closed form on the initial one, so
+# they differ by the order of the largest strain, rho g H / M = 9e-6: the checks allow 1e-5.
+COLUMN_SETTLEMENT = 2000.0 * 10.0 * 4.0 ** 2 / (2 * (5e9 + 4 * 3e9 / 3))
+
+
+@REQ
+def test_a_phase_may_solve_the_elastic_zones_directly(tmp_path):
+    done, results = run(tmp_path, COLUMN + """
+[[phase]]
+name = "weightless"
+stop = { cycles = 2 }
+[[phase]]
+name = "loaded"
+gravity = [0.0, -10.0]
+static_solve = true
+stop = { ratio = 1e-6, cycles = 50 }
+require_equilibrium = true
+""")
+    assert done.returncode == 0, done.stderr
+    loaded = results["phases"][1]
+    # The direct solve leaves nothing to relax: the ratio is met on the phase's first step.
+    assert loaded["stop_reason"] == "ratio" and loaded["cycles"] == 1
+    top = results["histories"]["top"]["value"][-1]
+    assert top == pytest.approx(-COLUMN_SETTLEMENT, rel=1e-5, abs=0)
+    # The elastic energy the solve set up is supplied without its work: the account still closes.
+    energy = results["energy"]
+    stored = COLUMN_SETTLEMENT * 2000.0 * 10.0 * 4.0 / 3.0  # integral of s^2 / (2 M) over the column
+    # Constant stress per zone holds less energy than the linear stress: at most (h / H)^2 / 4 of it
+    # for cells of height h = 0.5 m (the energy of s - mean(s) over each cell, summed).
+    deficit = (0.5 / 4.0) ** 2 / 4
+    assert stored * (1 - deficit) <= energy["static_solve"] <= stored * (1 + 1e-5)
+    assert energy["strain"] == pytest.approx(energy["static_solve"], rel=1e-9, abs=0)
+    assert results["run"]["static_solve_seconds"] >= 0.0
+
+
+@REQ
+def test_a_phase_switches_to_local_damping_and_the_step_shrinks_for_it(tmp_path):
+    phases = """
+[[phase]]
+name = "start"
+mass_damping = 10.0
+stop = { cycles = 5 }
+"""
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    done, before = run(tmp_path / "a", COLUMN + phases)
+    assert done.returncode == 0, done.stderr
+    done, after = run(tmp_path / "b", COLUMN + phases + """
+[[phase]]
+name = "relax"
+gravity = [0.0, -10.0]
+local_damping = 0.8
+stop = { ratio = 1e-5, cycles = 20000 }
+require_equilibrium = true
+""")
+    assert done.returncode == 0, done.stderr
+    # dt / sqrt(1 + alpha_L), the critical step of central differences under local damping.
+    assert after["run"]["dt"] == pytest.approx(before["run"]["dt"] / math.sqrt(1.8), rel=1e-12, abs=0)
+    assert after["phases"][1]["stop_reason"] == "ratio"
+    assert after["histories"]["top"]["value"][-1] == pytest.approx(-COLUMN_SETTLEMENT, rel=1e-3, abs=0)
+
+
+@pytest.mark.requirements("REQ-RUN-004", "REQ-QA-007")
+@pytest.mark.parametrize("change, key, message", [
+    ('[[phase.block_material]]\nname = "rock"\nfriction = 30.0\ncohesion = 1e6\n', "phase[0].static_solve",
+     "is Mohr-Coulomb when the phase starts"),
+    ("local_damping = 1.0\n", "phase[0].local_damping", "must lie in [0, 1)"),
+    ("local_damping = 0.8\nmass_damping = 5.0\n", "phase[0].local_damping", "replaces mass damping"),
+])
+def test_bad_solver_switches_in_a_phase_are_scene_errors(tmp_path, change, key, message):
+    solve = "static_solve = true\n" if "static_solve" in key else ""
+    done, _ = run(tmp_path, COLUMN + '[[phase]]\nname = "p"\nstop = { cycles = 2 }\n' + solve + change)
+    assert done.returncode == 3, done.stderr
+    assert f"key '{key}'" in done.stderr and message in done.stderr, done.stderr
+
+
+@pytest.mark.requirements("REQ-RUN-004", "REQ-QA-007")
+def test_a_direct_solve_with_rigid_blocks_is_a_scene_error(tmp_path):
+    done, _ = run(tmp_path, BLOCKS + '[[phase]]\nname = "p"\nstatic_solve = true\nstop = { cycles = 2 }\n')
+    assert done.returncode == 3 and "key 'phase[0].static_solve'" in done.stderr and "rigid" in done.stderr, done.stderr

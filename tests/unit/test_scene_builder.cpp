@@ -108,7 +108,7 @@ SceneDefinition plateDefinition() {
 }  // namespace
 
 TEST(SceneBuilder, ARigidSceneInCodeIsTheSceneReadFromToml) {
-  VDEC_REQUIREMENTS("REQ-RUN-007");
+  VDEC_REQUIREMENTS("REQ-IO-012");
   const Scene read = sceneFromText(blockOnBase(), "builder-rigid");
   const Scene built = buildScene(blockOnBaseDefinition());
   EXPECT_TRUE(modelBytes(built.model) == modelBytes(read.model));
@@ -121,7 +121,7 @@ TEST(SceneBuilder, ARigidSceneInCodeIsTheSceneReadFromToml) {
 }
 
 TEST(SceneBuilder, AZonedSceneWithBoundariesInCodeIsTheSceneReadFromToml) {
-  VDEC_REQUIREMENTS("REQ-RUN-007");
+  VDEC_REQUIREMENTS("REQ-IO-012");
   const Scene read = sceneFromText(kPlate, "builder-plate");
   const Scene built = buildScene(plateDefinition());
   ASSERT_EQ(built.model.zones.size(), 32);
@@ -133,7 +133,7 @@ TEST(SceneBuilder, AZonedSceneWithBoundariesInCodeIsTheSceneReadFromToml) {
 }
 
 TEST(SceneBuilder, ErrorsOnDefinitionsMadeInCodeNameTheDefinitionAndTheKey) {
-  VDEC_REQUIREMENTS("REQ-RUN-007");
+  VDEC_REQUIREMENTS("REQ-IO-012");
   SceneDefinition material = blockOnBaseDefinition();
   material.blocks[1].material = "granite";
   EXPECT_EQ(buildError(material), "key 'block 'top'.material': no block material named 'granite'");
@@ -156,7 +156,7 @@ TEST(SceneBuilder, ErrorsOnDefinitionsMadeInCodeNameTheDefinitionAndTheKey) {
 }
 
 TEST(SceneBuilder, ASceneBuiltInCodeIsNotSavedForARestart) {
-  VDEC_REQUIREMENTS("REQ-RUN-007");
+  VDEC_REQUIREMENTS("REQ-IO-012");
   SceneDefinition definition = blockOnBaseDefinition();
   PhaseDefinition& phase = definition.phases.emplace_back();
   phase.name = "settle";
