@@ -51,7 +51,13 @@ void ContactDetection::measureBoxes(const Model& m) {
 
 std::vector<std::pair<int, int>> ContactDetection::candidatePairs(const Model& m) {
   measureBoxes(m);
-  return overlappingPairs(minX_, maxX_, minY_, maxY_, grid_);
+  std::vector<std::pair<int, int>> pairs = overlappingPairs(minX_, maxX_, minY_, maxY_, grid_);
+  // An excavated block touches nothing: its contacts go at the scan after the excavation.
+  const Blocks& b = m.blocks;
+  pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                             [&b](const auto& p) { return b.excavated(p.first) || b.excavated(p.second); }),
+              pairs.end());
+  return pairs;
 }
 
 void ContactDetection::scan(Model& m, const std::vector<char>* moved) {
@@ -346,6 +352,12 @@ void ContactDetection::measureDisplacements(const Model& m) {
     const int b = m.gridpoints.block[i];
     displacement_[b] = std::max(displacement_[b], norm(m.gridpoints.position[i] - scanGridpoint_[i]));
   }
+}
+
+void ContactDetection::rescanNow(Model& m, const std::vector<int>& blocks) {
+  std::vector<char> moved(m.blocks.size(), 0);
+  for (const int b : blocks) moved[b] = 1;
+  scan(m, &moved);
 }
 
 void ContactDetection::update(Model& m, double largestStepDisplacement) {

@@ -26,6 +26,8 @@ class ContactDetection {
   void checkStepReach(const Model& model, double dt, double largestStepDisplacement);
   // Blocks to rescan at the next update whatever their motion.
   void requestRescan(const std::vector<int>& blocks) { requested_.insert(requested_.end(), blocks.begin(), blocks.end()); }
+  // Rescans `blocks` now, not at the next update: the contacts of an excavated block go at once.
+  void rescanNow(Model& model, const std::vector<int>& blocks);
   int scans() const { return scans_; }
   // What carries from one step to the next (core/state_archive.hpp); the rest are scratch buffers.
   template <class A>

@@ -53,7 +53,9 @@ struct JointMaterial {
 
 // Degrees of freedom of a rigid block or gridpoint that are driven (velocity prescribed, zero when
 // fixed) rather than integrated from the forces. Excavated marks a gridpoint whose zones were all
-// excavated during the run: it is held at rest (DriveX | DriveY) and belongs to no zone.
+// excavated during the run: it is held at rest (DriveX | DriveY) and belongs to no zone; and a
+// rigid block a phase excavated: held at rest (DriveAll), unloaded, and left out of contact
+// detection, so that it touches nothing (its arrays stay, so that block ids do not change).
 enum DrivenDof : std::uint8_t { DriveX = 1, DriveY = 2, DriveRotation = 4, DriveAll = 7, Excavated = 8 };
 
 // Rigid blocks, structure of arrays. Vertices of block b are firstVertex[b] ..
@@ -86,7 +88,8 @@ struct Blocks {
   std::vector<double> inputAngularVelocity;
 
   int size() const { return static_cast<int>(name.size()); }
-  bool movesFreely(int b) const { return driven[b] != DriveAll && !deformable[b]; }
+  bool movesFreely(int b) const { return (driven[b] & DriveAll) != DriveAll && !deformable[b]; }
+  bool excavated(int b) const { return (driven[b] & Excavated) != 0; }
 };
 
 // Gridpoints of deformable blocks (1.3.3.3): the nodes of their constant-strain triangles.

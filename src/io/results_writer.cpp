@@ -191,6 +191,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                       {"rotation", bl.rotation[b]},
                       {"velocity", {bl.velocity[b].x, bl.velocity[b].y}},
                       {"angular_velocity", bl.angularVelocity[b]}});
+    if (bl.excavated(b)) blocks.back()["excavated"] = true;
   }
   j["blocks"] = blocks;
   json contacts = json::array();

@@ -53,7 +53,7 @@ Grid collect(const Model& m) {
   }
   const Blocks& b = m.blocks;
   for (int k = 0; k < b.size(); ++k) {
-    if (b.deformable[k]) continue;
+    if (b.deformable[k] || b.excavated(k)) continue;
     std::vector<int> cell;
     for (int v = b.firstVertex[k]; v < b.firstVertex[k] + b.vertexCount[k]; ++v) {
       cell.push_back(static_cast<int>(g.points.size()));

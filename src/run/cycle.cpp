@@ -531,6 +531,8 @@ void Cycle::changeRigidBlocks(const std::vector<RigidBlockChange>& changes) {
 }
 
 void Cycle::excavate(const ExcavationRegion& region) {
+  excavateRigidBlocks(region);
+  if (model_.zones.size() == 0) return;
   const ZoneExcavation done = excavateZones(model_, [&](Vec2 p) { return region.contains(p); }, region.where);
   if (done.removed == 0) return;
   // The removed zones' elastic energy and the motion of the gridpoints left without a zone leave
@@ -552,6 +554,33 @@ void Cycle::excavate(const ExcavationRegion& region) {
     undampedStep_ = std::min(undampedStep_, stepLimitOf("deformable-blocks"));
     dt_ = std::min(dt_, dampedStep(stepLimitOf("deformable-blocks")));
   }
+}
+
+void Cycle::excavateRigidBlocks(const ExcavationRegion& region) {
+  Blocks& bl = model_.blocks;
+  std::vector<int> gone;
+  for (int b = 0; b < bl.size(); ++b)
+    if (!bl.deformable[b] && !bl.excavated(b) && region.contains(bl.centroid[b])) gone.push_back(b);
+  if (gone.empty()) return;
+  // Its motion and the elastic energy of its joints leave the model without work; its contacts
+  // go with a rescan, which no longer pairs it with anything.
+  double removed = 0.0;
+  for (const int b : gone) {
+    const Vec2 v = bl.velocity[b];
+    const double vx = (bl.driven[b] & DriveX) ? 0.0 : v.x, vy = (bl.driven[b] & DriveY) ? 0.0 : v.y;
+    const double w = (bl.driven[b] & DriveRotation) ? 0.0 : bl.angularVelocity[b];
+    removed += 0.5 * (bl.mass[b] * (vx * vx + vy * vy) + bl.inertia[b] * w * w);
+    bl.driven[b] = DriveAll | Excavated;
+    bl.velocity[b] = bl.inputVelocity[b] = {0.0, 0.0};
+    bl.angularVelocity[b] = bl.inputAngularVelocity[b] = 0.0;
+    bl.velocityHistory[b] = -1;
+    bl.appliedForce[b] = {0.0, 0.0};
+    bl.appliedMoment[b] = 0.0;
+  }
+  for (const Contact& c : model_.contacts)
+    if (bl.excavated(c.blockA) || bl.excavated(c.blockB)) removed += c.springEnergy;
+  energy_.withdraw(removed);
+  if (hasContacts_) detection_.rescanNow(model_, gone);
 }
 
 double Cycle::stepLimitOf(std::string_view component) const {

@@ -75,6 +75,9 @@ class Cycle {
   // report.error and report.errorCode set, so that the histories up to it can still be written.
   RunReport run();
   double timeStep() const { return dt_; }
+  // The stop of the next run() of a scene without phases, counted from where that run starts: a
+  // caller that runs on in windows (the benchmarks) sets each window's length.
+  void setStop(const StopCriteria& stop) { settings_.stop = stop; }
   // Continue a saved run: the phases before `firstPhase` are done and the state (visitState)
   // has been loaded; run() then starts at that phase, without the initial history sample.
   void resumeAt(int firstPhase) { firstPhase_ = firstPhase; }
@@ -109,6 +112,7 @@ class Cycle {
   // The named component's limit on the step (s); infinite when it has none or is not in the scene.
   double stepLimitOf(std::string_view component) const;
   void excavate(const ExcavationRegion& region);
+  void excavateRigidBlocks(const ExcavationRegion& region);
   // A phase's direct solve of the elastic zones (zone/direct_solve), with its energy account.
   void solveDirectly();
   double storedElasticEnergy() const;

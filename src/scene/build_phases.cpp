@@ -66,14 +66,24 @@ Phase buildPhase(const PhaseDefinition& d, Model& m, std::optional<Model>& geome
   for (const RigidBlockChangeDefinition& b : d.blocks) c.blocks.push_back(rigidBlock(m, b));
   for (const ExcavationDefinition& e : d.excavations) {
     const ExcavationRegion& region = e.region;
-    for (int b = 0; b < m.blocks.size(); ++b)
-      if (!m.blocks.deformable[b] && region.contains(m.blocks.centroid[b]))
-        e.origin.failTable("holds the centroid of rigid block '" + m.blocks.name[b] + "': a phase excavates zones of "
-                           "deformable blocks only; remove rigid blocks before the run with [[excavation]]");
     if (!geometry) geometry = m;
-    if (excavateZones(*geometry, [&](Vec2 p) { return region.contains(p); }, region.where).removed == 0)
-      e.origin.failTable("removes nothing: no zone centroid lies in it when the phase starts");
-    if (geometry->zones.size() == 0) e.origin.failTable("removes every zone: the model would have none left");
+    // Tried on the model as the scene places it: rigid blocks by their centroid, zones by theirs.
+    Blocks& blocks = geometry->blocks;
+    int removed = 0;
+    for (int b = 0; b < blocks.size(); ++b)
+      if (!blocks.deformable[b] && !blocks.excavated(b) && region.contains(blocks.centroid[b])) {
+        blocks.driven[b] = DriveAll | Excavated;
+        ++removed;
+      }
+    const bool zoned = geometry->zones.size() > 0;
+    if (zoned) removed += excavateZones(*geometry, [&](Vec2 p) { return region.contains(p); }, region.where).removed;
+    if (removed == 0)
+      e.origin.failTable("removes nothing: no rigid block's centroid and no zone centroid lies in it when the phase "
+                         "starts");
+    if (zoned && geometry->zones.size() == 0) e.origin.failTable("removes every zone: the model would have none left");
+    bool anyLeft = geometry->zones.size() > 0;
+    for (int b = 0; b < blocks.size(); ++b) anyLeft = anyLeft || (!blocks.deformable[b] && !blocks.excavated(b));
+    if (!anyLeft) e.origin.failTable("removes every block: the model would be empty");
     c.excavations.push_back(region);
   }
   for (const BoundaryDefinition& b : d.boundaries) {
