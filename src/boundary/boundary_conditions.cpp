@@ -26,6 +26,7 @@ double addBoundaryCondition(Model& m, BoundaryCondition condition, double timeOr
   }
   for (ViscousEdge e : condition.dashpots) {
     e.source = source;
+    e.timeOrigin = timeOrigin;
     m.viscousEdges.push_back(e);
   }
   if (!m.viscousEdges.empty()) g.dashpotForce.resize(g.size());

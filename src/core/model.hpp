@@ -153,12 +153,17 @@ struct DrivenVelocity {
 };
 
 // A viscous boundary edge (Lysmer and Kuhlemeyer, 1.3-35, 1.3-36): normal and shear dashpots of
-// the impedances rho C_p and rho C_s of the block's material, per unit length of the edge.
+// the impedances rho C_p and rho C_s of the block's material, per unit length of the edge; and,
+// for a wave coming in through it, the incident particle velocity, entered as the traction
+// 2 rho C (v_in . n) n (P) and 2 rho C_s (v_in . t) t (S).
 struct ViscousEdge {
   int from = -1, to = -1;        // gridpoints, counter-clockwise along the block boundary
   double normalImpedance = 0.0;  // rho C_p, Pa s/m
   double shearImpedance = 0.0;   // rho C_s
   int source = -1;
+  Vec2 inputVelocity;            // incident particle velocity (m/s), times the history if any
+  int history = -1;              // Model::timeFunctions entry scaling it; -1: constant
+  double timeOrigin = 0.0;       // the history is f(t - timeOrigin)
 };
 
 // One [[boundary]] table (of the scene or of a phase) resolved to gridpoints and edges: what

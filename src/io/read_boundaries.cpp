@@ -157,11 +157,17 @@ BoundaryDefinition readBoundary(TableReader& r) {
   if (!r.has("r") && !r.has("angle") && !r.has("stress_table") && r.has("centre"))
     r.fail("centre", "is used only with r, angle or stress_table");
   if (r.boolean("viscous", false)) {
-    for (const char* key : {"fix", "velocity_x", "velocity_y", "stress", "pressure", "stress_table", "history",
+    for (const char* key : {"fix", "velocity_x", "velocity_y", "stress", "pressure", "stress_table",
                             "stress_gradient_x", "stress_gradient_y"})
       if (r.has(key))
-        r.fail(key, "a viscous boundary only absorbs; give fixities, velocities and stresses in other tables");
+        r.fail(key, "a viscous boundary absorbs, and takes an incoming wave as input_velocity; give fixities, "
+                    "velocities and stresses in other tables");
     d.viscous = true;
+    if (r.has("input_velocity")) d.inputVelocity = r.vec2("input_velocity");
+    if (r.has("history")) {
+      if (!r.has("input_velocity")) r.fail("history", "scales the input_velocity of a viscous boundary; give input_velocity");
+      d.history = readTimeFunction(r, "history");
+    }
     return d;
   }
   const bool fix = r.has("fix"), vx = r.has("velocity_x"), vy = r.has("velocity_y");

@@ -59,9 +59,14 @@ BoundaryCondition resolveBoundary(const BoundaryDefinition& d, Model& m) {
 
   if (d.viscous) {
     const BlockMaterial& mat = m.blockMaterials[m.blocks.material[block]];
+    int history = -1;
+    if (d.history) {
+      m.timeFunctions.push_back(*d.history);
+      history = static_cast<int>(m.timeFunctions.size()) - 1;
+    }
     for (const Model::BoundaryEdge& be : selectedEdges())
       condition.dashpots.push_back({be.from, be.to, std::sqrt(mat.density * (mat.bulk + 4.0 * mat.shear / 3.0)),
-                                    std::sqrt(mat.density * mat.shear), -1});
+                                    std::sqrt(mat.density * mat.shear), -1, d.inputVelocity, history, 0.0});
     if (condition.dashpots.empty())
       d.origin.failTable("selects no boundary edge of block '" + m.blocks.name[block] +
                          "': dashpots act on edges of the block's outline whose two ends are both selected");

@@ -99,6 +99,7 @@ struct BoundaryDefinition {
   CoordinateRange x, y, r, angle;  // on the initial positions; r and angle about `centre`
   Vec2 centre;
   bool viscous = false;
+  Vec2 inputVelocity;  // viscous: the incident particle velocity of a wave entering through it
   std::uint8_t fix = 0;           // DriveX / DriveY
   std::uint8_t velocityBits = 0;  // components driven at `velocity`
   Vec2 velocity;
