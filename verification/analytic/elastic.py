@@ -438,3 +438,19 @@ def half_sine_pulse_energy(*, rho, c, width, amplitude, duration):
     the given width of a one-dimensional medium: the power rho c v^2 per unit area integrated
     over the pulse, rho c width amplitude^2 duration / 2."""
     return rho * c * width * amplitude * amplitude * duration / 2.0
+
+
+def joint_transmission_coefficient(*, frequency, impedance, normal_stiffness, incident_amplitude=1.0):
+    """Amplitude of a plane wave transmitted through a linear elastic joint (a displacement
+    discontinuity of stiffness k, Pa/m) between two identical half-spaces of impedance Z = rho c,
+    at normal incidence, for an incident wave of the given amplitude and frequency (Schoenberg
+    1980; Pyrak-Nolte, Myer and Cook 1990): |T| = 1 / sqrt(1 + (w Z / 2 k)^2), w = 2 pi f.
+
+    From the incident (A), reflected (R) and transmitted (T) particle velocities at the joint:
+    its stress is continuous, A - R = T, and its opening rate is the stress rate over k,
+    T - (A + R) = i w Z T / k; together T / A = 1 / (1 - i w Z / (2 k)). For a P wave k = kn and
+    Z = rho c_p; for an S wave k = ks and Z = rho c_s."""
+    if not (frequency >= 0.0 and impedance > 0.0 and normal_stiffness > 0.0):
+        raise ValueError("frequency must be >= 0, impedance and normal_stiffness positive")
+    ratio = 2.0 * math.pi * frequency * impedance / (2.0 * normal_stiffness)
+    return incident_amplitude / math.sqrt(1.0 + ratio * ratio)
