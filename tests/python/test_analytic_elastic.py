@@ -593,7 +593,7 @@ def test_half_sine_pulse_energy_is_the_integral_of_the_power():
         pytest.approx(quad(power, 0.0, duration)[0], rel=1e-12, abs=0)
 
 
-@pytest.mark.requirements("REQ-QA-003")
+@pytest.mark.requirements("REQ-QA-003", "REQ-ZONE-017")
 def test_joint_transmission_coefficient_solves_the_interface_conditions():
     # Known values: w Z / 2k = 1 gives 1 / sqrt(2); a stiff joint transmits all, a soft one little.
     Z, k = 5.477e6, 5.477e6 * 2 * math.pi * 100.0 / 2
