@@ -78,9 +78,11 @@ Component deformableBlocks(RunContext& run) {
   // The first step starts from the given configuration and stress: no motion has happened yet
   // for the initial velocities, v(-dt/2), to have strained the zones.
   c.stages.push_back({"zone-forces", [&run] {
-                        const ZoneStepTotals t = computeZoneForces(run.model, run.model.cycle == 0 ? 0.0 : run.dt);
+                        const ZoneStepTotals t = computeZoneForces(run.model, run.model.cycle == 0 ? 0.0 : run.dt,
+                                                                   run.settings.stiffnessDamping);
                         run.step.strainEnergy += t.strainEnergy;
                         run.energy.addDissipation(0.0, 0.0, t.plasticDissipation);
+                        run.step.dampingDissipation += t.viscousDissipation;
                       }});
   // Deformable blocks' outlines follow their gridpoints at once, so that the next step's
   // contacts and this step's outputs see the positions just reached.

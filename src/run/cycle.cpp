@@ -113,9 +113,12 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   // estimates of 1.3-25 and 1.3-28 keep their margins.
   // Stiffness-proportional damping lowers the critical step of the stiffest joint mode from
   // 2 / w to (2 / w) (sqrt(1 + xi^2) - xi), xi = beta w / 2 (Belytschko, after 1.3-22). The
-  // rigid-block step is FRAC times the undamped critical step, so w = 2 FRAC / dt.
+  // rigid-block step is FRAC times the undamped critical step, so w = 2 FRAC / dt; the zones'
+  // estimate 2 sqrt(m / k) (1.3-25) is at most their critical step, so w <= 2 / dt_z. The
+  // stiffest of the two is damped the most.
   if (settings_.stiffnessDamping > 0.0) {
-    const double w = 2.0 * settings_.frac / dtBlocks;
+    const double wZones = hasZones_ ? 2.0 / (stepLimitOf("deformable-blocks") / settings_.zoneFraction) : 0.0;
+    const double w = std::max(2.0 * settings_.frac / dtBlocks, wZones);
     const double xi = 0.5 * settings_.stiffnessDamping * w;
     stiffnessDampingStepFactor_ = std::sqrt(1.0 + xi * xi) - xi;
   }

@@ -308,10 +308,6 @@ void excavate(std::vector<BlockInput>& inputs, const ExcavationDefinition& d) {
 void checkModelWide(const Model& m, const SceneDefinition& s) {
   if (s.settings.stiffnessDamping > 0.0) {
     const char* key = s.solver.keys.count("rayleigh") ? "rayleigh" : "stiffness_damping";
-    for (int b = 0; b < m.blocks.size(); ++b)
-      if (m.blocks.deformable[b])
-        s.solver.fail(key, "acts on the joints between rigid blocks; block '" + m.blocks.name[b] +
-                               "' is deformable, and the zones' viscous stress is not implemented");
     for (const JointMaterial& j : m.jointMaterials)
       if (j.law == JointLaw::ContinuouslyYielding)
         s.solver.fail(key, "damps linear joint springs; joint material '" + j.name + "' is continuously yielding");

@@ -114,7 +114,7 @@ struct ZoneLaw {
 
 }  // namespace
 
-ZoneStepTotals computeZoneForces(Model& m, double dt) {
+ZoneStepTotals computeZoneForces(Model& m, double dt, double stiffnessDamping) {
   // Kept from step to step so that the running model allocates nothing here; the zone loop's
   // worker threads reach it through this reference (their own thread_local copies are empty).
   static thread_local std::vector<ZoneLaw> lawBuffer;
@@ -132,8 +132,11 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
   Zones& zn = m.zones;
   const Gridpoints& g = m.gridpoints;
   const int count = zn.size();
+  // The viscous stress beta D de / dt: its factor on the elastic increment (none in the first step,
+  // which takes no increment).
+  const double viscous = dt > 0.0 ? stiffnessDamping / dt : 0.0;
   struct Sums {
-    double strain = 0.0, plastic = 0.0;
+    double strain = 0.0, plastic = 0.0, viscous = 0.0;
     int firstInverted = std::numeric_limits<int>::max();  // an inside-out zone, if any
   };
   const Sums sums = deterministicReduceChunks<Sums>(count, [&](int begin, int end, Sums& acc) {
@@ -147,7 +150,7 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
       double p0x[kTile], p0y[kTile], p1x[kTile], p1y[kTile], p2x[kTile], p2y[kTile];
       double v0x[kTile], v0y[kTile], v1x[kTile], v1y[kTile], v2x[kTile], v2y[kTile];
       double sxx[kTile], syy[kTile], sxy[kTile], szz[kTile], a1[kTile], a2[kTile], twoG[kTile];
-      double twiceArea[kTile], halfStepArea[kTile];
+      double twiceArea[kTile], halfStepArea[kTile], ex[kTile], ey[kTile], exy2[kTile];
       for (int k = 0; k < size; ++k) {
         const int z = tile + k;
         const auto& n = zn.gridpoint[z];
@@ -189,6 +192,7 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
         // Plane-strain elasticity (Hooke, 1.4-105, as the law M of 1.4-115): a1 = K + 4G/3,
         // a2 = K - 2G/3.
         const double exx = dvxdx * dt, eyy = dvydy * dt, exy = 0.5 * (dvxdy + dvydx) * dt;
+        ex[k] = exx, ey[k] = eyy, exy2[k] = 2.0 * exy;
         sxx[k] = rxx + (a1[k] * exx + a2[k] * eyy);
         syy[k] = ryy + (a2[k] * exx + a1[k] * eyy);
         sxy[k] = rxy + twoG[k] * exy;
@@ -203,6 +207,7 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
         const ZoneLaw& law = laws[zn.material[z]];
         const BlockMaterial& mat = *law.material;
         const double area = 0.5 * twiceArea[k];
+        bool yielded = false;
         if (mat.plastic) {
           // The plastic strain of the return is C^-1 (trial - returned) and the stress over it
           // is on average (trial + returned) / 2, so the work it absorbs is W(trial) -
@@ -210,6 +215,7 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
           const double trialEnergy = energyDensity(law, sxx[k], syy[k], sxy[k], szz[k]);
           const std::uint8_t now = mohrCoulombReturn(mat.mohrCoulomb, law.a1, law.a2, sxx[k], syy[k], sxy[k], szz[k]);
           if (now != Elastic) acc.plastic += area * (trialEnergy - energyDensity(law, sxx[k], syy[k], sxy[k], szz[k]));
+          yielded = now != Elastic;
           zn.plasticState[z] = static_cast<std::uint8_t>(now | ((zn.plasticState[z] & (ShearNow | TensionNow | PlasticInPast)) ? PlasticInPast : 0));
         }
         zn.sxx[z] = sxx[k];
@@ -220,14 +226,24 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
         // -(1/2) sigma (n1 S1 + n2 S2) over the two sides at node i; tension positive.
         const double cx[3] = {0.5 * (p1y[k] - p2y[k]), 0.5 * (p2y[k] - p0y[k]), 0.5 * (p0y[k] - p1y[k])};
         const double cy[3] = {0.5 * (p2x[k] - p1x[k]), 0.5 * (p0x[k] - p2x[k]), 0.5 * (p1x[k] - p0x[k])};
+        double fxx = sxx[k], fyy = syy[k], fxy = sxy[k];
+        if (viscous > 0.0 && !yielded) {
+          // Dropped while the zone yields, as a slipping contact drops its shear part: the
+          // viscous stress of the elastic increment, whose work over the increment is dissipated.
+          const double vxx = viscous * (a1[k] * ex[k] + a2[k] * ey[k]), vyy = viscous * (a2[k] * ex[k] + a1[k] * ey[k]);
+          const double vxy = viscous * twoG[k] * 0.5 * exy2[k];
+          fxx += vxx, fyy += vyy, fxy += vxy;
+          acc.viscous += area * (vxx * ex[k] + vyy * ey[k] + vxy * exy2[k]);
+        }
         for (int corner = 0; corner < 3; ++corner)
-          zn.nodalForce[z][corner] = {-(sxx[k] * cx[corner] + sxy[k] * cy[corner]), -(sxy[k] * cx[corner] + syy[k] * cy[corner])};
+          zn.nodalForce[z][corner] = {-(fxx * cx[corner] + fxy * cy[corner]), -(fxy * cx[corner] + fyy * cy[corner])};
         acc.strain += area * energyDensity(law, sxx[k], syy[k], sxy[k], szz[k]);
       }
     }
   }, [](Sums& total, const Sums& part) {
     total.strain += part.strain;
     total.plastic += part.plastic;
+    total.viscous += part.viscous;
     total.firstInverted = std::min(total.firstInverted, part.firstInverted);
   });
   const bool inverted = sums.firstInverted != std::numeric_limits<int>::max();
@@ -239,7 +255,7 @@ ZoneStepTotals computeZoneForces(Model& m, double dt) {
       << "that no joint or contact stiffness far above the zones' shortens the stable step";
     throw InstabilityError(s.str());
   }
-  return {sums.strain, sums.plastic};
+  return {sums.strain, sums.plastic, sums.viscous};
 }
 
 }  // namespace vdec

@@ -10,12 +10,15 @@ namespace vdec {
 struct ZoneStepTotals {
   double strainEnergy = 0.0;        // J/m, sum over zones of the elastic energy density times area
   double plasticDissipation = 0.0;  // J/m this step: the elastic energy the plastic return removed
+  double viscousDissipation = 0.0;  // J/m this step: the work of the stiffness-proportional viscous stress
 };
 
 // One step: updates every zone's stress from the velocities of the half step just ended and
-// stores the zone's nodal forces (Zones::nodalForce) for the gridpoints to gather. Throws
-// InstabilityError naming the zone if a zone turns inside out.
-ZoneStepTotals computeZoneForces(Model& model, double dt);
+// stores the zone's nodal forces (Zones::nodalForce) for the gridpoints to gather. With
+// stiffnessDamping = beta > 0 (1.3-22), a zone that stays elastic in the step also carries the
+// viscous stress beta D de / dt of its elastic stress increment in its nodal forces (not in its
+// stress). Throws InstabilityError naming the zone if a zone turns inside out.
+ZoneStepTotals computeZoneForces(Model& model, double dt, double stiffnessDamping = 0.0);
 
 // Elastic energy density of a plane-strain stress state: p^2 / 2K + s:s / 4G.
 double elasticEnergyDensity(double sxx, double syy, double sxy, double szz, double bulk, double shear);

@@ -612,3 +612,25 @@ def test_joint_transmission_coefficient_solves_the_interface_conditions():
         assert el.joint_transmission_coefficient(frequency=f, impedance=Z, normal_stiffness=k) == pytest.approx(
             abs(T), rel=1e-12, abs=0)
         assert abs(R) ** 2 + abs(T) ** 2 == pytest.approx(1.0, rel=1e-12, abs=0)  # a lossless joint
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-ZONE-018")
+def test_column_mode_and_its_rayleigh_decrement():
+    # c_p = 2190.89 m/s for E = 10 GPa, nu = 0.25, rho = 2500; w_1 = pi c_p / 20 on H = 10 m.
+    w = el.column_fundamental_angular_frequency(E=10e9, nu=0.25, rho=2500.0, height=10.0)
+    assert w == pytest.approx(math.pi * 2190.8902300206646 / 20.0, rel=1e-14, abs=0)
+    # The quarter-wave shape solves the wave equation with u(0) = 0 and du/dy(H) = 0: by finite
+    # differences, c^2 u'' = -w^2 u along the column.
+    y = np.linspace(0.0, 10.0, 2001)
+    u = np.sin(math.pi * y / 20.0)
+    curvature = np.gradient(np.gradient(u, y), y)
+    c = 2190.8902300206646
+    assert np.max(np.abs(c * c * curvature[5:-5] + w * w * u[5:-5])) < 1e-4 * w * w
+    # Rayleigh: alpha = xi w and beta = xi / w give xi at w; beta alone gives beta w / 2.
+    d = el.column_rayleigh_log_decrement(E=10e9, nu=0.25, rho=2500.0, height=10.0, alpha=0.05 * w, beta=0.05 / w)
+    assert d == pytest.approx(2 * math.pi * 0.05 / math.sqrt(1 - 0.05 ** 2), rel=1e-14, abs=0)
+    d = el.column_rayleigh_log_decrement(E=10e9, nu=0.25, rho=2500.0, height=10.0, alpha=0.0, beta=2.9e-4)
+    xi = 2.9e-4 * w / 2
+    assert d == pytest.approx(2 * math.pi * xi / math.sqrt(1 - xi * xi), rel=1e-14, abs=0)
+    with pytest.raises(ValueError):
+        el.column_rayleigh_log_decrement(E=10e9, nu=0.25, rho=2500.0, height=10.0, alpha=0.0, beta=1.0)

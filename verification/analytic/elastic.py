@@ -454,3 +454,24 @@ def joint_transmission_coefficient(*, frequency, impedance, normal_stiffness, in
         raise ValueError("frequency must be >= 0, impedance and normal_stiffness positive")
     ratio = 2.0 * math.pi * frequency * impedance / (2.0 * normal_stiffness)
     return incident_amplitude / math.sqrt(1.0 + ratio * ratio)
+
+
+def column_fundamental_angular_frequency(*, E, nu, rho, height):
+    """w_1 = pi c_p / (2 H) of a laterally confined column (one-dimensional strain) fixed at its
+    base and free at its top: the quarter-wave mode u = sin(pi y / 2 H) of the wave equation with
+    c_p = sqrt((K + 4G/3) / rho)."""
+    if not height > 0.0:
+        raise ValueError("height must be positive")
+    return math.pi * constrained_wave_speed(E=E, nu=nu, rho=rho) / (2.0 * height)
+
+
+def column_rayleigh_log_decrement(*, E, nu, rho, height, alpha, beta):
+    """Logarithmic decrement of the column's fundamental mode under Rayleigh damping: each mode of
+    an undamped system keeps its shape under C = alpha M + beta K and decays with the damping
+    ratio xi = (alpha / w + beta w) / 2 (Clough and Penzien, Dynamics of Structures, 12-4; the
+    reference's 1.3-18); the decrement over one period is 2 pi xi / sqrt(1 - xi^2)."""
+    w = column_fundamental_angular_frequency(E=E, nu=nu, rho=rho, height=height)
+    xi = 0.5 * (alpha / w + beta * w)
+    if not 0.0 <= xi < 1.0:
+        raise ValueError(f"damping ratio {xi}: the decrement needs 0 <= xi < 1 (underdamped)")
+    return 2.0 * math.pi * xi / math.sqrt(1.0 - xi * xi)
