@@ -354,6 +354,18 @@ void Cycle::recordHistories(bool initial) {
   for (std::size_t i = 0; i < historySpecs_.size(); ++i) {
     const HistorySpec& h = historySpecs_[i];
     HistorySeries& series = histories_[i];
+    if (const auto velocity = velocityOfAcceleration(h.quantity)) {
+      // (v(t + dt/2) - v(t - dt/2)) / dt, the acceleration the step's forces gave, at t.
+      HistorySpec of = h;
+      of.quantity = *velocity;
+      const double v = sampleHistory(model_, of, monitors_);
+      const bool due = !initial && series.hasLastVelocity && model_.cycle % series.every == 0;
+      const double a = (v - series.lastVelocity) / dt_;
+      series.lastVelocity = v;
+      series.hasLastVelocity = true;
+      if (due) appendHistorySample(series, model_.time - dt_, a);
+      continue;
+    }
     if (model_.cycle % series.every != 0) continue;
     const HistorySubject subject = findHistorySubject(h.quantity);
     // Positions are those just reached; zone stresses, joints and model measures were formed in

@@ -16,6 +16,8 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::BlockVelocityY, "block.velocity_y", S::Block, "m/s", "centroid velocity y (at the half step)"},
       {Q::BlockRotation, "block.rotation", S::Block, "rad", "rotation, counter-clockwise positive"},
       {Q::BlockAngularVelocity, "block.angular_velocity", S::Block, "rad/s", "angular velocity"},
+      {Q::BlockAccelerationX, "block.acceleration_x", S::Block, "m/s^2", "centroid acceleration x: the change of velocity over the step, at the step's start"},
+      {Q::BlockAccelerationY, "block.acceleration_y", S::Block, "m/s^2", "centroid acceleration y: the change of velocity over the step, at the step's start"},
       {Q::JointNormalForce, "joint.normal_force", S::Joint, "N/m", "sum of contact normal forces, compression positive"},
       {Q::JointShearForce, "joint.shear_force", S::Joint, "N/m", "sum of contact shear forces"},
       {Q::JointNormalStress, "joint.normal_stress", S::Joint, "Pa", "sum of normal forces / joint.length"},
@@ -40,6 +42,8 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::GridpointDisplacementY, "gridpoint.displacement_y", S::Gridpoint, "m", "y displacement of a deformable block's gridpoint"},
       {Q::GridpointVelocityX, "gridpoint.velocity_x", S::Gridpoint, "m/s", "x velocity of the gridpoint (at the half step)"},
       {Q::GridpointVelocityY, "gridpoint.velocity_y", S::Gridpoint, "m/s", "y velocity of the gridpoint (at the half step)"},
+      {Q::GridpointAccelerationX, "gridpoint.acceleration_x", S::Gridpoint, "m/s^2", "x acceleration of the gridpoint: the change of velocity over the step, at the step's start"},
+      {Q::GridpointAccelerationY, "gridpoint.acceleration_y", S::Gridpoint, "m/s^2", "y acceleration of the gridpoint: the change of velocity over the step, at the step's start"},
       {Q::ZoneSxx, "zone.sxx", S::Zone, "Pa", "zone stress sxx, tension positive"},
       {Q::ZoneSyy, "zone.syy", S::Zone, "Pa", "zone stress syy, tension positive"},
       {Q::ZoneSxy, "zone.sxy", S::Zone, "Pa", "zone stress sxy"},
@@ -58,6 +62,16 @@ std::optional<HistoryQuantityInfo> findHistoryQuantity(std::string_view name) {
   for (const auto& info : historyQuantities())
     if (info.name == name) return info;
   return std::nullopt;
+}
+
+std::optional<HistoryQuantity> velocityOfAcceleration(HistoryQuantity q) {
+  switch (q) {
+    case HistoryQuantity::BlockAccelerationX: return HistoryQuantity::BlockVelocityX;
+    case HistoryQuantity::BlockAccelerationY: return HistoryQuantity::BlockVelocityY;
+    case HistoryQuantity::GridpointAccelerationX: return HistoryQuantity::GridpointVelocityX;
+    case HistoryQuantity::GridpointAccelerationY: return HistoryQuantity::GridpointVelocityY;
+    default: return std::nullopt;
+  }
 }
 
 HistorySubject findHistorySubject(HistoryQuantity quantity) {

@@ -21,7 +21,11 @@ enum class HistoryQuantity {
   GridpointDisplacementX, GridpointDisplacementY, GridpointVelocityX, GridpointVelocityY,
   ZoneSxx, ZoneSyy, ZoneSxy, ZoneSzz,
   MeanSxx, MeanSyy, MeanSxy,
+  BlockAccelerationX, BlockAccelerationY, GridpointAccelerationX, GridpointAccelerationY,
 };
+
+// For an acceleration quantity, the velocity it is the rate of; nullopt for the others.
+std::optional<HistoryQuantity> velocityOfAcceleration(HistoryQuantity quantity);
 
 enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone };
 
@@ -70,6 +74,10 @@ struct HistorySeries {
   long long every = 1;         // the interval in force: the scene's `every`, doubled at each halving
   int halvings = 0;
   bool sampledAtCycleZero = false;  // the first sample is that of cycle 0 (block and gridpoint quantities)
+  // Acceleration quantities: the velocity of the half step before, from which the next step's
+  // acceleration is formed (kept every step, whatever `every`).
+  double lastVelocity = 0.0;
+  bool hasLastVelocity = false;
 };
 
 template <class A>
@@ -79,7 +87,7 @@ void visitState(A& a, HistorySpec& h) {
 
 template <class A>
 void visitState(A& a, HistorySeries& h) {
-  a(h.t), a(h.value), a(h.every), a(h.halvings), a(h.sampledAtCycleZero);
+  a(h.t), a(h.value), a(h.every), a(h.halvings), a(h.sampledAtCycleZero), a(h.lastVelocity), a(h.hasLastVelocity);
 }
 
 
