@@ -597,11 +597,11 @@ def test_half_sine_pulse_energy_is_the_integral_of_the_power():
 def test_joint_transmission_coefficient_solves_the_interface_conditions():
     # Known values: w Z / 2k = 1 gives 1 / sqrt(2); a stiff joint transmits all, a soft one little.
     Z, k = 5.477e6, 5.477e6 * 2 * math.pi * 100.0 / 2
-    assert el.joint_transmission_coefficient(frequency=100.0, impedance=Z, normal_stiffness=k) == pytest.approx(
+    assert el.joint_transmission_coefficient(frequency=100.0, impedance=Z, stiffness=k) == pytest.approx(
         1 / math.sqrt(2), rel=1e-14, abs=0)
-    assert el.joint_transmission_coefficient(frequency=100.0, impedance=Z, normal_stiffness=1e30) == pytest.approx(
+    assert el.joint_transmission_coefficient(frequency=100.0, impedance=Z, stiffness=1e30) == pytest.approx(
         1.0, rel=1e-14, abs=0)
-    assert el.joint_transmission_coefficient(frequency=0.0, impedance=Z, normal_stiffness=k, incident_amplitude=0.01) \
+    assert el.joint_transmission_coefficient(frequency=0.0, impedance=Z, stiffness=k, incident_amplitude=0.01) \
         == 0.01
     # Independently: solve the two interface conditions as a complex linear system for R and T.
     for f in (10.0, 50.0, 200.0, 1000.0):
@@ -609,7 +609,7 @@ def test_joint_transmission_coefficient_solves_the_interface_conditions():
         # unknowns (R, T): A - R - T = 0 (stress), T - R - i w Z T / k = A (opening rate = stress rate / k)
         system = np.array([[-1.0, -1.0], [-1.0, 1.0 - 1j * w * Z / k]])
         R, T = np.linalg.solve(system, np.array([-1.0, 1.0], dtype=complex))
-        assert el.joint_transmission_coefficient(frequency=f, impedance=Z, normal_stiffness=k) == pytest.approx(
+        assert el.joint_transmission_coefficient(frequency=f, impedance=Z, stiffness=k) == pytest.approx(
             abs(T), rel=1e-12, abs=0)
         assert abs(R) ** 2 + abs(T) ** 2 == pytest.approx(1.0, rel=1e-12, abs=0)  # a lossless joint
 

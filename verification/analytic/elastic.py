@@ -440,7 +440,7 @@ def half_sine_pulse_energy(*, rho, c, width, amplitude, duration):
     return rho * c * width * amplitude * amplitude * duration / 2.0
 
 
-def joint_transmission_coefficient(*, frequency, impedance, normal_stiffness, incident_amplitude=1.0):
+def joint_transmission_coefficient(*, frequency, impedance, stiffness, incident_amplitude=1.0):
     """Amplitude of a plane wave transmitted through a linear elastic joint (a displacement
     discontinuity of stiffness k, Pa/m) between two identical half-spaces of impedance Z = rho c,
     at normal incidence, for an incident wave of the given amplitude and frequency (Schoenberg
@@ -450,9 +450,9 @@ def joint_transmission_coefficient(*, frequency, impedance, normal_stiffness, in
     its stress is continuous, A - R = T, and its opening rate is the stress rate over k,
     T - (A + R) = i w Z T / k; together T / A = 1 / (1 - i w Z / (2 k)). For a P wave k = kn and
     Z = rho c_p; for an S wave k = ks and Z = rho c_s."""
-    if not (frequency >= 0.0 and impedance > 0.0 and normal_stiffness > 0.0):
-        raise ValueError("frequency must be >= 0, impedance and normal_stiffness positive")
-    ratio = 2.0 * math.pi * frequency * impedance / (2.0 * normal_stiffness)
+    if not (frequency >= 0.0 and impedance > 0.0 and stiffness > 0.0):
+        raise ValueError("frequency must be >= 0, impedance and stiffness positive")
+    ratio = 2.0 * math.pi * frequency * impedance / (2.0 * stiffness)
     return incident_amplitude / math.sqrt(1.0 + ratio * ratio)
 
 
