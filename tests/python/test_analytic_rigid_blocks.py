@@ -437,3 +437,35 @@ def test_rayleigh_damping_closed_forms():
         pytest.approx(math.sqrt(1.0025) - 0.05, rel=1e-14, abs=0)
     with pytest.raises(ValueError):
         rb.rayleigh_log_decrement(alpha=1e4, beta=0.0, mass=2500.0, kn=1e8, contact_length=1.0)
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-MOTION-010")
+def test_newmark_sliding_block_known_values_and_consistency():
+    kw = dict(g=10.0, phi_deg=30.0, base_acceleration=10.0, pulse_start=0.05, pulse_duration=0.1)
+    mu_g = 10.0 * math.tan(math.radians(30.0))
+    # Newmark's slip V^2 / (2 mu g) (1 - mu g / a) by hand: V = 1 m/s.
+    slip = rb.newmark_rectangular_pulse_slip(g=10.0, phi_deg=30.0, base_acceleration=10.0, pulse_duration=0.1)
+    assert slip == pytest.approx(1.0 / (2 * mu_g) * (1 - mu_g / 10.0), rel=1e-14, abs=0)
+    assert slip == pytest.approx(0.03660254037844387, rel=1e-12, abs=0)
+    # Long after the catch-up the base is ahead of the block by exactly that slip.
+    late = np.array([1.0, 2.0])
+    base = rb.sliding_block_base_displacement(late, base_acceleration=10.0, pulse_start=0.05, pulse_duration=0.1)
+    assert base - rb.sliding_block_on_pulsed_base(late, **kw) == pytest.approx([slip, slip], rel=1e-12, abs=0)
+    # The block's velocity (finite differences) is mu g (t - t0) while it slides, continuous at
+    # the catch-up, and V after it; it never exceeds the base's.
+    t = np.linspace(0.0, 0.5, 50001)
+    x = rb.sliding_block_on_pulsed_base(t, **kw)
+    v = np.gradient(x, t)
+    ts = 0.05 + 1.0 / mu_g
+    sliding = (t > 0.06) & (t < ts - 0.01)
+    assert np.allclose(v[sliding], mu_g * (t[sliding] - 0.05), rtol=1e-6, atol=0.0)
+    assert np.allclose(v[t > ts + 0.01], 1.0, rtol=1e-9, atol=0.0)
+    vb = np.gradient(rb.sliding_block_base_displacement(t, base_acceleration=10.0, pulse_start=0.05,
+                                                        pulse_duration=0.1), t)
+    assert np.all(v <= vb + 1e-6)
+    # A pulse the joint can carry: the block moves with the base, no slip.
+    weak = dict(kw, base_acceleration=5.0)
+    assert np.allclose(rb.sliding_block_on_pulsed_base(t, **weak),
+                       rb.sliding_block_base_displacement(t, base_acceleration=5.0, pulse_start=0.05,
+                                                          pulse_duration=0.1), rtol=0.0, atol=0.0)
+    assert rb.newmark_rectangular_pulse_slip(g=10.0, phi_deg=30.0, base_acceleration=5.0, pulse_duration=0.1) == 0.0

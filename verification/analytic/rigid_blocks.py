@@ -18,6 +18,51 @@ def _tan(deg):
     return math.tan(math.radians(deg))
 
 
+# ---------------------------------------------------------------- block on an accelerating base
+
+
+def sliding_block_on_pulsed_base(t, *, g, phi_deg, base_acceleration, pulse_start, pulse_duration):
+    """Horizontal displacement of a block resting on a horizontal Coulomb joint (friction angle
+    phi, no cohesion) whose base is at rest until pulse_start, accelerates at base_acceleration
+    for pulse_duration and moves on at V = base_acceleration pulse_duration (Newmark 1965, the
+    rectangular acceleration pulse). The joint can give the block at most mu g, mu = tan phi: with
+    a > mu g it slides, accelerating at mu g from the pulse's start until its velocity reaches V
+    at t_s = pulse_start + V / (mu g), and moves with the base after that:
+    x = mu g (t - t0)^2 / 2 for t0 <= t <= t_s, x(t_s) + V (t - t_s) after. With a <= mu g it
+    moves with the base."""
+    mu_g = _tan(phi_deg) * g
+    a, t0, t1 = base_acceleration, pulse_start, pulse_duration
+    if not (mu_g > 0.0 and a > 0.0 and t1 > 0.0):
+        raise ValueError("friction, base acceleration and pulse duration must be positive")
+    t = np.asarray(t, dtype=float)
+    if a <= mu_g:
+        return sliding_block_base_displacement(t, base_acceleration=a, pulse_start=t0, pulse_duration=t1)
+    v = a * t1
+    ts = t0 + v / mu_g
+    tau = np.clip(t - t0, 0.0, None)
+    return np.where(t <= ts, 0.5 * mu_g * tau * tau, 0.5 * mu_g * (ts - t0) ** 2 + v * (t - ts))
+
+
+def sliding_block_base_displacement(t, *, base_acceleration, pulse_start, pulse_duration):
+    """The base's displacement under the rectangular acceleration pulse: a (t - t0)^2 / 2 during
+    it, then a t1^2 / 2 + V (t - t0 - t1), V = a t1."""
+    a, t0, t1 = base_acceleration, pulse_start, pulse_duration
+    t = np.asarray(t, dtype=float)
+    tau = np.clip(t - t0, 0.0, t1)
+    return 0.5 * a * tau * tau + a * t1 * np.clip(t - t0 - t1, 0.0, None)
+
+
+def newmark_rectangular_pulse_slip(*, g, phi_deg, base_acceleration, pulse_duration):
+    """The block's slip relative to its base once it has stopped sliding: V^2 / (2 mu g)
+    (1 - mu g / a), V = a t1 (Newmark 1965); zero when a <= mu g."""
+    mu_g = _tan(phi_deg) * g
+    a = base_acceleration
+    if a <= mu_g:
+        return 0.0
+    v = a * pulse_duration
+    return v * v / (2.0 * mu_g) * (1.0 - mu_g / a)
+
+
 # ---------------------------------------------------------------- block on an inclined joint
 
 
