@@ -170,6 +170,8 @@ BoundaryDefinition readBoundary(TableReader& r) {
     }
     return d;
   }
+  if (r.has("input_velocity"))
+    r.fail("input_velocity", "is the incoming wave of a viscous boundary: it needs viscous = true");
   const bool fix = r.has("fix"), vx = r.has("velocity_x"), vy = r.has("velocity_y");
   const bool tabulated = r.has("stress_table");
   const bool stress = r.has("stress") || tabulated, pressure = r.has("pressure");

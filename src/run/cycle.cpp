@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -199,6 +200,11 @@ void Cycle::checkDamping(double alpha, const std::string& where) const {
   throw SceneError(s.str());
 }
 
+void Cycle::resumeAt(int firstPhase) {
+  firstPhase_ = firstPhase;
+  buildStages();
+}
+
 void Cycle::buildStages() {
   // Only the components and stages the scene needs. The step's force sums start from zero, in
   // one place. Built again when a phase changes what is needed; the profile's times carry over
@@ -363,7 +369,7 @@ void Cycle::recordHistories(bool initial) {
       const double a = (v - series.lastVelocity) / dt_;
       series.lastVelocity = v;
       series.hasLastVelocity = true;
-      if (due) appendHistorySample(series, model_.time - dt_, a);
+      if (due && appendHistorySample(series, model_.time - dt_, a) && series.halvings == 1) warnHalved(h, series);
       continue;
     }
     if (model_.cycle % series.every != 0) continue;
@@ -375,12 +381,25 @@ void Cycle::recordHistories(bool initial) {
     if (initial) series.sampledAtCycleZero = true;
     const bool halved = appendHistorySample(series, block || initial ? model_.time : model_.time - dt_,
                                             sampleHistory(model_, h, monitors_));
-    if (halved && series.halvings == 1)
-      std::fprintf(stderr, "%svdec: warning: history '%s' reached %zu samples at cycle %lld: it now keeps every "
-                   "other sample and samples every %lld cycles, doubling again each time it fills "
-                   "(results.json histories.%s.every); give it a larger every to choose the interval yourself\n",
-                   settings_.progress && isatty(STDERR_FILENO) ? "\n" : "", h.name.c_str(), kHistorySampleLimit,
-                   model_.cycle, series.every, h.name.c_str());
+    if (halved && series.halvings == 1) warnHalved(h, series);
+  }
+}
+
+void Cycle::warnHalved(const HistorySpec& h, const HistorySeries& series) const {
+  std::fprintf(stderr, "%svdec: warning: history '%s' reached %zu samples at cycle %lld: it now keeps every "
+               "other sample and samples every %lld cycles, doubling again each time it fills "
+               "(results.json histories.%s.every); give it a larger every to choose the interval yourself\n",
+               settings_.progress && isatty(STDERR_FILENO) ? "\n" : "", h.name.c_str(), kHistorySampleLimit,
+               model_.cycle, series.every, h.name.c_str());
+}
+
+void Cycle::restartAccelerations() {
+  for (std::size_t i = 0; i < historySpecs_.size(); ++i) {
+    const auto velocity = velocityOfAcceleration(historySpecs_[i].quantity);
+    if (!velocity) continue;
+    HistorySpec of = historySpecs_[i];
+    of.quantity = *velocity;
+    histories_[i].lastVelocity = sampleHistory(model_, of, monitors_);
   }
 }
 
@@ -577,6 +596,12 @@ void Cycle::excavateRigidBlocks(const ExcavationRegion& region) {
   for (int b = 0; b < bl.size(); ++b)
     if (!bl.deformable[b] && !bl.excavated(b) && region.contains(bl.centroid[b])) gone.push_back(b);
   if (gone.empty()) return;
+  bool anyLeft = model_.zones.size() > 0;
+  for (int b = 0; b < bl.size() && !anyLeft; ++b)
+    anyLeft = !bl.deformable[b] && !bl.excavated(b) && std::find(gone.begin(), gone.end(), b) == gone.end();
+  if (!anyLeft)
+    throw SceneError(region.where + " removes every block when the phase starts (the blocks have moved into it): "
+                                    "the model would be empty; give the excavation a smaller region");
   // Its motion and the elastic energy of its joints leave the model without work; its contacts
   // go with a rescan, which no longer pairs it with anything.
   double removed = 0.0;
@@ -663,6 +688,7 @@ RunReport Cycle::run() {
         done.startCycle = model_.cycle;
         done.startTime = model_.time;
         beginPhase(phase.changes);
+        restartAccelerations();
         checkDamping(alpha_, "phase '" + phase.name + "': mass_damping");
         stepUntil(phase.stop, done.stopReason);
         closePhase(done, phaseStart_);

@@ -80,7 +80,9 @@ class Cycle {
   void setStop(const StopCriteria& stop) { settings_.stop = stop; }
   // Continue a saved run: the phases before `firstPhase` are done and the state (visitState)
   // has been loaded; run() then starts at that phase, without the initial history sample.
-  void resumeAt(int firstPhase) { firstPhase_ = firstPhase; }
+  // The stages are formed again from the loaded model: the phases before may have added or freed
+  // the boundary conditions that need them.
+  void resumeAt(int firstPhase);
   // After each phase, before the next begins (the state is then whole): the caller may save it.
   std::function<void(const std::string& phase, const RunReport& soFar)> afterPhase;
   // Everything of the run that carries from step to step, besides the model (core/state_archive.hpp).
@@ -103,10 +105,14 @@ class Cycle {
   void checkReversingMotion(const StepTotals& totals);
   void checkStiffnessGrowth(const ContactStepTotals& totals) const;
   void recordHistories(bool initial);
+  // Acceleration histories start again from the velocities a phase's start left (resets,
+  // excavations, a direct solve change them without a step's forces).
+  void restartAccelerations();
   bool stopReached(const StopCriteria& s, long long startCycle, double startTime, std::string& reason) const;
   void stepUntil(const StopCriteria& stop, std::string& reason);
   void beginPhase(const PhaseChanges& changes);
   void checkDamping(double alpha, const std::string& where) const;
+  void warnHalved(const HistorySpec& h, const HistorySeries& series) const;
   // A step formed without damping, reduced for local and stiffness-proportional damping.
   double dampedStep(double step) const;
   // The named component's limit on the step (s); infinite when it has none or is not in the scene.

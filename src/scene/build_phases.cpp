@@ -31,12 +31,16 @@ std::pair<int, MohrCoulombProperties> blockStrength(const Model& m, const BlockS
   return {material, d.strength};
 }
 
-RigidBlockChange rigidBlock(const Model& m, const RigidBlockChangeDefinition& d) {
+// `geometry`, when a phase before has excavated, is the model as it left it.
+RigidBlockChange rigidBlock(const Model& m, const std::optional<Model>& geometry, const RigidBlockChangeDefinition& d) {
   RigidBlockChange change = d.change;
   change.block = blockNamed(m, d.origin, "name", d.block);
   if (m.blocks.deformable[change.block])
     d.origin.fail("name", "block '" + m.blocks.name[change.block] + "' is deformable: a phase holds, drives and loads "
                           "its gridpoints through [[phase.boundary]] tables");
+  if (geometry && geometry->blocks.excavated(change.block))
+    d.origin.fail("name", "block '" + m.blocks.name[change.block] + "' was excavated by an earlier phase: it takes "
+                          "no fixity, drive or load");
   return change;
 }
 
@@ -63,7 +67,7 @@ Phase buildPhase(const PhaseDefinition& d, Model& m, std::optional<Model>& geome
     c.freeBoundaries.push_back(name);
   }
   for (const BlockStrengthDefinition& b : d.blockStrengths) c.blockStrengths.push_back(blockStrength(m, b));
-  for (const RigidBlockChangeDefinition& b : d.blocks) c.blocks.push_back(rigidBlock(m, b));
+  for (const RigidBlockChangeDefinition& b : d.blocks) c.blocks.push_back(rigidBlock(m, geometry, b));
   for (const ExcavationDefinition& e : d.excavations) {
     const ExcavationRegion& region = e.region;
     if (!geometry) geometry = m;

@@ -328,15 +328,18 @@ void checkModelWide(const Model& m, const SceneDefinition& s) {
 // A phase's switch to local damping or its direct solve, against the run's settings and the
 // model as the phase will find it (`plastic`: the block materials then Mohr-Coulomb).
 void checkPhaseSolver(const PhaseDefinition& d, const Model& m, const RunSettings& settings,
-                      const std::vector<char>& plastic) {
+                      const std::vector<char>& plastic, bool velocityDriven) {
   if (d.localDamping.value_or(0.0) > 0.0 && settings.stiffnessDamping > 0.0)
     d.origin.fail("local_damping", "the run has stiffness-proportional damping (solver.stiffness_damping or "
                                    "solver.rayleigh), which goes with mass damping, not with local damping");
   if (!d.staticSolve) return;
   for (int b = 0; b < m.blocks.size(); ++b)
-    if (!m.blocks.deformable[b])
+    if (!m.blocks.deformable[b] && !m.blocks.excavated(b))
       d.origin.fail("static_solve", "the direct solve covers deformable blocks only; block '" + m.blocks.name[b] +
                                         "' is rigid");
+  if (velocityDriven)
+    d.origin.fail("static_solve", "a boundary condition in force when the phase starts drives gridpoints at a velocity, "
+                                  "which has no static meaning; free it in this phase (free = [...]) or solve by cycling");
   for (const JointMaterial& j : m.jointMaterials)
     if (j.law == JointLaw::ContinuouslyYielding)
       d.origin.fail("static_solve", "the direct solve takes joints as linear springs, and joint material '" + j.name +
@@ -484,12 +487,21 @@ Scene buildScene(SceneDefinition s) {
   std::optional<Model> excavated;  // a copy of the model, excavated as the phases will, once one does
   std::vector<char> plastic;  // block materials Mohr-Coulomb by the phase at hand
   for (const BlockMaterial& mat : m.blockMaterials) plastic.push_back(mat.plastic);
+  // Boundary conditions in force, by name ("" for unnamed ones), and whether they drive a velocity.
+  std::vector<std::pair<std::string, bool>> inForce;
+  for (const BoundaryCondition& b : m.boundaryConditions) inForce.emplace_back(b.name, b.velocityBits != 0);
   for (const PhaseDefinition& d : s.phases) {
     for (const Phase& before : scene.settings.phases)
       if (before.name == d.name) d.origin.fail("name", "phase '" + d.name + "' is defined twice");
     scene.settings.phases.push_back(buildPhase(d, m, excavated, active));
-    for (const auto& [material, strength] : scene.settings.phases.back().changes.blockStrengths) plastic[material] = 1;
-    checkPhaseSolver(d, m, s.settings, plastic);
+    const PhaseChanges& changes = scene.settings.phases.back().changes;
+    for (const auto& [material, strength] : changes.blockStrengths) plastic[material] = 1;
+    for (const std::string& name : changes.freeBoundaries)
+      std::erase_if(inForce, [&name](const auto& b) { return b.first == name; });
+    for (const BoundaryCondition& b : changes.boundaries) inForce.emplace_back(b.name, b.velocityBits != 0);
+    bool velocityDriven = false;
+    for (const auto& [name, drives] : inForce) velocityDriven = velocityDriven || drives;
+    checkPhaseSolver(d, excavated ? *excavated : m, s.settings, plastic, velocityDriven);
   }
   if (s.initialStress) applyInitialStress(m, *s.initialStress);
   for (const JointAssignmentDefinition& d : s.jointAssignments) assignJoint(m, d);

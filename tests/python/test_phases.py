@@ -481,3 +481,113 @@ stop = {{ cycles = 2 }}
 {region}
 """)
     assert done.returncode == 3 and "phase[0].excavation[0]" in done.stderr and message in done.stderr, done.stderr
+
+
+@pytest.mark.requirements("REQ-RUN-004", "REQ-QA-007")
+def test_a_phase_may_not_drive_or_load_a_block_an_earlier_phase_excavated(tmp_path):
+    done, _ = run(tmp_path, STACK + """
+[[phase]]
+name = "dig"
+stop = { cycles = 2 }
+[[phase.excavation]]
+circle = { centre = [0.0, 0.25], radius = 0.3 }
+[[phase]]
+name = "release"
+stop = { cycles = 2 }
+[[phase.block]]
+name = "top"
+free = ["x", "y", "rotation"]
+""")
+    assert done.returncode == 3, done.stderr
+    assert "key 'phase[1].block[0].name'" in done.stderr and "was excavated by an earlier phase" in done.stderr
+
+
+@pytest.mark.requirements("REQ-RUN-004", "REQ-QA-007")
+def test_a_direct_solve_with_a_velocity_drive_in_force_is_a_scene_error(tmp_path):
+    driven = COLUMN + """
+[[boundary]]
+name = "push"
+block = "column"
+y = [4.0, 4.0]
+velocity_y = -0.001
+[[phase]]
+name = "push"
+stop = { cycles = 20 }
+[[phase]]
+name = "solve"
+static_solve = true
+stop = { cycles = 2 }
+"""
+    done, _ = run(tmp_path, driven)
+    assert done.returncode == 3, done.stderr
+    assert "key 'phase[1].static_solve'" in done.stderr and "drives gridpoints at a velocity" in done.stderr
+    # Freed in the same phase, the drive is gone before the solve.
+    (tmp_path / "freed").mkdir()
+    done, _ = run(tmp_path / "freed", driven.replace('static_solve = true\n', 'static_solve = true\nfree = ["push"]\n'))
+    assert done.returncode == 0, done.stderr
+
+
+@pytest.mark.requirements("REQ-RUN-004", "REQ-MOTION-009")
+def test_accelerations_start_again_after_a_phase_changes_the_velocities(tmp_path):
+    # The cap, moving at 1 m/s, has its velocity reset by the second phase: its acceleration is
+    # that of the forces (g while it falls free of the excavated block), not the reset's jump.
+    done, results = run(tmp_path, STACK.replace('name = "cap"\nmaterial = "rock"\n',
+                                                'name = "cap"\nmaterial = "rock"\nvelocity = [0.0, 1.0]\n')
+                        + """
+[[history]]
+name = "cap_ay"
+quantity = "block.acceleration_y"
+block = "cap"
+every = 1
+[[phase]]
+name = "rise"
+stop = { cycles = 3 }
+[[phase]]
+name = "dig"
+reset = ["velocities"]
+stop = { cycles = 20 }
+[[phase.excavation]]
+circle = { centre = [0.0, 0.25], radius = 0.3 }
+""")
+    assert done.returncode == 0, done.stderr
+    a = results["histories"]["cap_ay"]["value"]
+    assert a[3:] == pytest.approx([-9.81] * len(a[3:]), rel=1e-9, abs=0)
+
+
+@pytest.mark.requirements("REQ-RUN-004", "REQ-QA-007")
+def test_an_excavation_that_finds_every_block_in_its_region_when_the_phase_starts_stops_the_run(tmp_path):
+    # The driven block is outside the region in the scene, inside it when the phase starts.
+    done, _ = run(tmp_path, """
+[model]
+gravity = [0.0, -9.81]
+rounding = 0.01
+[[block_material]]
+name = "rock"
+density = 2500.0
+[[joint_material]]
+name = "j"
+kn = 1e10
+ks = 1e10
+friction = 30.0
+[[block]]
+name = "base"
+material = "rock"
+vertices = [[-3.0, -1.0], [3.0, -1.0], [3.0, 0.0], [-3.0, 0.0]]
+fix = ["x", "y", "rotation"]
+[[block]]
+name = "runner"
+material = "rock"
+vertices = [[10.0, 0.5], [11.0, 0.5], [11.0, 1.5], [10.0, 1.5]]
+fix = ["x", "y", "rotation"]
+velocity = [-20.0, 0.0]
+[[phase]]
+name = "run in"
+stop = { time = 0.4 }
+[[phase]]
+name = "dig"
+stop = { cycles = 2 }
+[[phase.excavation]]
+polygon = [[-4.0, -2.0], [4.0, -2.0], [4.0, 3.0], [-4.0, 3.0]]
+""")
+    assert done.returncode == 3, done.stderr
+    assert "[phase[1].excavation[0]]" in done.stderr and "removes every block when the phase starts" in done.stderr

@@ -147,3 +147,72 @@ def test_save_names_a_phase_of_the_scene(tmp_path, saved):
     done, _ = run(scene, tmp_path / "out", "--save", "nonesuch")
     assert done.returncode == 2
     assert "--save nonesuch: " in done.stderr and "has no phase of that name (its phases: 'first', 'second')" in done.stderr
+
+
+# A boundary condition added by a phase that was saved: a restart must apply it (its stage is
+# formed from the loaded model, not from the scene's start).
+ADDED_IN_A_PHASE = """
+[model]
+rounding = 0.01
+[[block_material]]
+name = "rock"
+density = 2000.0
+bulk = 5e9
+shear = 3e9
+[[block]]
+name = "column"
+material = "rock"
+vertices = [[0.0, 0.0], [1.0, 0.0], [1.0, 4.0], [0.0, 4.0]]
+zoning = { nx = 2, ny = 8 }
+[[boundary]]
+block = "column"
+y = [0.0, 0.0]
+fix = ["x", "y"]
+[[history]]
+name = "uy"
+quantity = "gridpoint.displacement_y"
+block = "column"
+point = [0.5, 4.0]
+every = 1
+[[history]]
+name = "ay"
+quantity = "gridpoint.acceleration_y"
+block = "column"
+point = [0.5, 4.0]
+every = 3
+[[phase]]
+name = "quiet"
+stop = { cycles = 5 }
+[[phase]]
+name = "load"
+stop = { cycles = 50 }
+[[phase.boundary]]
+name = "p"
+block = "column"
+y = [4.0, 4.0]
+stress = [0.0, -1e6, 0.0]
+[[phase.boundary]]
+name = "wave"
+block = "column"
+x = [0.0, 0.0]
+viscous = true
+input_velocity = [0.001, 0.0]
+history = { kind = "sine", frequency = 200.0 }
+[[phase]]
+name = "more"
+stop = { cycles = 50 }
+"""
+
+
+@REQ
+def test_a_restart_applies_the_boundary_conditions_a_saved_phase_added(tmp_path):
+    scene = tmp_path / "scene.toml"
+    scene.write_text(ADDED_IN_A_PHASE)
+    done, whole = run(scene, tmp_path / "whole")
+    assert done.returncode == 0, done.stderr
+    done, _ = run(scene, tmp_path / "first", "--save", "load")
+    assert done.returncode == 0, done.stderr
+    done, rest = run(scene, tmp_path / "rest", "--restart", str(tmp_path / "first" / "after-phase-2.vdecstate"))
+    assert done.returncode == 0, done.stderr
+    assert rest["run"]["stages"] == whole["run"]["stages"]
+    assert computed(rest) == computed(whole)

@@ -86,3 +86,11 @@ def test_bad_input_keys_of_a_viscous_boundary_are_scene_errors(tmp_path, input_k
     done, _ = run(tmp_path, COLUMN.format(time=0.001, input=input_keys))
     assert done.returncode == 3, done.stderr
     assert f"key 'boundary[1].{key}'" in done.stderr and message in done.stderr, done.stderr
+
+
+@pytest.mark.requirements("REQ-BOUNDARY-002", "REQ-QA-007")
+def test_an_input_velocity_needs_a_viscous_boundary(tmp_path):
+    scene = COLUMN.format(time=0.001, input="input_velocity = [0.01, 0.0]").replace("viscous = true\n", "")
+    done, _ = run(tmp_path, scene)
+    assert done.returncode == 3, done.stderr
+    assert "key 'boundary[1].input_velocity'" in done.stderr and "needs viscous = true" in done.stderr, done.stderr
