@@ -557,23 +557,7 @@ circle = { centre = [0.0, 0.25], radius = 0.3 }
 @pytest.mark.requirements("REQ-RUN-004", "REQ-QA-007")
 def test_an_excavation_that_finds_every_block_in_its_region_when_the_phase_starts_stops_the_run(tmp_path):
     # The driven block is outside the region in the scene, inside it when the phase starts.
-    done, _ = run(tmp_path, """
-[model]
-gravity = [0.0, -9.81]
-rounding = 0.01
-[[block_material]]
-name = "rock"
-density = 2500.0
-[[joint_material]]
-name = "j"
-kn = 1e10
-ks = 1e10
-friction = 30.0
-[[block]]
-name = "base"
-material = "rock"
-vertices = [[-3.0, -1.0], [3.0, -1.0], [3.0, 0.0], [-3.0, 0.0]]
-fix = ["x", "y", "rotation"]
+    done, _ = run(tmp_path, BLOCKS + """
 [[block]]
 name = "runner"
 material = "rock"
