@@ -117,12 +117,7 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   // rigid-block step is FRAC times the undamped critical step, so w = 2 FRAC / dt; the zones'
   // estimate 2 sqrt(m / k) (1.3-25) is at most their critical step, so w <= 2 / dt_z. The
   // stiffest of the two is damped the most.
-  if (settings_.stiffnessDamping > 0.0) {
-    const double wZones = hasZones_ ? 2.0 / (stepLimitOf("deformable-blocks") / settings_.zoneFraction) : 0.0;
-    const double w = std::max(2.0 * settings_.frac / dtBlocks, wZones);
-    const double xi = 0.5 * settings_.stiffnessDamping * w;
-    stiffnessDampingStepFactor_ = std::sqrt(1.0 + xi * xi) - xi;
-  }
+  formStiffnessDampingFactor();
   undampedStep_ = dt_;
   dt_ = dampedStep(dt_);
   // The step as a fraction of the critical step of the stiffest joint spring on the lightest
@@ -558,9 +553,10 @@ void Cycle::changeRigidBlocks(const std::vector<RigidBlockChange>& changes) {
   // A released block may be lighter than those the rigid-block step was formed from: form it again
   // over the blocks now free; the step may only shrink.
   components_ = sceneComponents(run_);  // the rigid blocks' limit now counts the released one
+  formStiffnessDampingFactor();
   const double dtBlocks = stepLimitOf("rigid-block-motion");
   undampedStep_ = std::min(undampedStep_, dtBlocks);
-  dt_ = std::min(dt_, dampedStep(dtBlocks));
+  dt_ = std::min({dt_, dampedStep(dtBlocks), dampedStep(undampedStep_)});
   contactStepFraction_ = settings_.frac * dt_ / dtBlocks;
 }
 
@@ -585,8 +581,9 @@ void Cycle::excavate(const ExcavationRegion& region) {
       if (!(g.driven[i] & Excavated)) g.mass[i] = 0.25 * g.stiffness[i] * densityStep_ * densityStep_;
   } else if (model_.zones.size() > 0) {
     // A gridpoint that lost zones may have lost more mass than stiffness: the step may only shrink.
+    formStiffnessDampingFactor();
     undampedStep_ = std::min(undampedStep_, stepLimitOf("deformable-blocks"));
-    dt_ = std::min(dt_, dampedStep(stepLimitOf("deformable-blocks")));
+    dt_ = std::min(dt_, dampedStep(undampedStep_));
   }
 }
 
@@ -621,6 +618,17 @@ void Cycle::excavateRigidBlocks(const ExcavationRegion& region) {
     if (bl.excavated(c.blockA) || bl.excavated(c.blockB)) removed += c.springEnergy;
   energy_.withdraw(removed);
   if (hasContacts_) detection_.rescanNow(model_, gone);
+}
+
+void Cycle::formStiffnessDampingFactor() {
+  // The stiffest mode's xi = beta w / 2, w its frequency from the components' limits; formed
+  // again when a phase raises it (a lighter block released, zones excavated): the factor, like
+  // the step, may only shrink.
+  if (!(settings_.stiffnessDamping > 0.0)) return;
+  const double wZones = hasZones_ ? 2.0 / (stepLimitOf("deformable-blocks") / settings_.zoneFraction) : 0.0;
+  const double w = std::max(2.0 * settings_.frac / stepLimitOf("rigid-block-motion"), wZones);
+  const double xi = 0.5 * settings_.stiffnessDamping * w;
+  stiffnessDampingStepFactor_ = std::min(stiffnessDampingStepFactor_, std::sqrt(1.0 + xi * xi) - xi);
 }
 
 double Cycle::stepLimitOf(std::string_view component) const {

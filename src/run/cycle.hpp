@@ -115,6 +115,7 @@ class Cycle {
   void warnHalved(const HistorySpec& h, const HistorySeries& series) const;
   // A step formed without damping, reduced for local and stiffness-proportional damping.
   double dampedStep(double step) const;
+  void formStiffnessDampingFactor();
   // The named component's limit on the step (s); infinite when it has none or is not in the scene.
   double stepLimitOf(std::string_view component) const;
   void excavate(const ExcavationRegion& region);

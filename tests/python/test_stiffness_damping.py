@@ -70,3 +70,57 @@ def test_zones_take_stiffness_damping_and_their_step_shrinks_as_belytschko_says(
     assert e["damping_dissipation"] > 0.0
     assert e["kinetic"] + e["strain"] + e["damping_dissipation"] == pytest.approx(
         e["initial"] + e["external_work"], rel=1e-3, abs=0)
+
+
+@REQ
+def test_a_phase_that_frees_a_lighter_block_forms_the_step_factor_again(tmp_path):
+    # A free 2 m block and a held 0.5 m block on a fixed base, kn = 1e8 Pa/m, beta = 1e-3 s. The
+    # rigid-block step takes the lightest free block and the longest edge among the free blocks
+    # (2 m): w = sqrt(kn 2 / m) is 141.4 rad/s with only the heavy block free, 565.7 once the
+    # light one (625 kg/m) is freed, and the factor sqrt(1 + xi^2) - xi, xi = beta w / 2, must
+    # follow it down (a step left at the heavy block's factor would be too long for the light one).
+    scene = """
+[model]
+gravity = [0.0, -10.0]
+rounding = 0.01
+[solver]
+stiffness_damping = 1e-3
+[[block_material]]
+name = "rock"
+density = 2500.0
+[[joint_material]]
+name = "joint"
+kn = 1e8
+ks = 1e8
+friction = 30.0
+[[block]]
+name = "base"
+material = "rock"
+vertices = [[-4.0, -1.0], [4.0, -1.0], [4.0, 0.0], [-4.0, 0.0]]
+fix = ["x", "y", "rotation"]
+[[block]]
+name = "heavy"
+material = "rock"
+vertices = [[-3.0, 0.0], [-1.0, 0.0], [-1.0, 2.0], [-3.0, 2.0]]
+[[block]]
+name = "light"
+material = "rock"
+vertices = [[1.0, 0.0], [1.5, 0.0], [1.5, 0.5], [1.0, 0.5]]
+fix = ["x", "y", "rotation"]
+[[phase]]
+name = "held"
+stop = { cycles = 10 }
+[[phase]]
+name = "freed"
+stop = { cycles = 10 }
+[[phase.block]]
+name = "light"
+free = ["x", "y", "rotation"]
+"""
+    done, results = run(tmp_path, scene)
+    assert done.returncode == 0, done.stderr
+    w = math.sqrt(1e8 * 2.0 / 625.0)
+    xi = 0.5 * 1e-3 * w
+    factor = math.sqrt(1 + xi * xi) - xi
+    assert results["run"]["stiffness_damping_step_factor"] == pytest.approx(factor, rel=1e-12, abs=0)
+    assert results["run"]["dt"] == pytest.approx(0.1 * 2 * math.sqrt(625.0 / 2e8) * factor, rel=1e-12, abs=0)
