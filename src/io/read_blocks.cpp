@@ -9,6 +9,8 @@ namespace {
 
 int positiveCount(TableReader& r, std::string_view key, int limit) { return static_cast<int>(r.integer(key, 1, limit)); }
 
+}  // namespace
+
 std::uint8_t degreesOfFreedom(TableReader& r, std::string_view key) {
   std::uint8_t bits = 0;
   for (const std::string& dof : r.strings(key)) {
@@ -18,6 +20,8 @@ std::uint8_t degreesOfFreedom(TableReader& r, std::string_view key) {
   }
   return bits;
 }
+
+namespace {
 
 // `annulus = {...}` (then the block has no `vertices`), or `zoning = {...}` on the block's
 // polygon; Rigid without either.

@@ -34,17 +34,8 @@ RigidBlockChangeDefinition readRigidBlockChange(TableReader& r) {
   d.origin = r.origin();
   d.block = r.string("name");
   RigidBlockChange& change = d.change;
-  auto dofs = [&](const char* key) {
-    std::uint8_t bits = 0;
-    for (const std::string& dof : r.has(key) ? r.strings(key) : std::vector<std::string>{}) {
-      const std::uint8_t bit = dof == "x" ? DriveX : dof == "y" ? DriveY : dof == "rotation" ? DriveRotation : 0;
-      if (!bit) r.fail(key, "unknown degree of freedom '" + dof + "'; use \"x\", \"y\" or \"rotation\"");
-      bits |= bit;
-    }
-    return bits;
-  };
-  change.fix = dofs("fix");
-  change.free = dofs("free");
+  change.fix = r.has("fix") ? degreesOfFreedom(r, "fix") : 0;
+  change.free = r.has("free") ? degreesOfFreedom(r, "free") : 0;
   if (change.fix & change.free) r.fail("free", "a degree of freedom is both fixed and freed");
   if (r.has("velocity") && !(change.fix & (DriveX | DriveY)))
     r.fail("velocity", "drives the components given in fix (\"x\", \"y\"); add them to fix");

@@ -29,6 +29,9 @@ std::optional<MohrCoulombProperties> readMohrCoulomb(TableReader& r, std::vector
 void readRunSettings(TableReader& top, SceneDefinition& scene);
 StopCriteria readStop(TableReader& r);
 
+// A rigid block's degrees of freedom named in the array `key`: "x", "y", "rotation" as DrivenDof bits.
+std::uint8_t degreesOfFreedom(TableReader& r, std::string_view key);
+
 // [[block]], [[region]], [[excavation]].
 void readBlocks(TableReader& top, SceneDefinition& scene);
 // The region of an [[excavation]] or [[phase.excavation]]: circle = { centre, radius } or a

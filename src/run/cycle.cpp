@@ -105,18 +105,14 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
         model_.gridpoints.mass[i] = 0.25 * model_.gridpoints.stiffness[i] * step * step;
     }
   }
-  dt_ = dtBlocks;
+  dt_ = INFINITY;
   for (const Component& c : components_)
-    if (c.stepLimit && c.name != "rigid-block-motion") dt_ = std::min(dt_, c.stepLimit());
+    if (c.stepLimit) dt_ = std::min(dt_, c.stepLimit());
   // Local damping lowers the critical step of central differences from w dt = 2 to
   // 2 / sqrt(1 + alpha_L) (the damping force, a fraction of the out-of-balance force, acts with
   // it whenever the motion runs against the force): the step shrinks by that factor, so that the
-  // estimates of 1.3-25 and 1.3-28 keep their margins.
-  // Stiffness-proportional damping lowers the critical step of the stiffest joint mode from
-  // 2 / w to (2 / w) (sqrt(1 + xi^2) - xi), xi = beta w / 2 (Belytschko, after 1.3-22). The
-  // rigid-block step is FRAC times the undamped critical step, so w = 2 FRAC / dt; the zones'
-  // estimate 2 sqrt(m / k) (1.3-25) is at most their critical step, so w <= 2 / dt_z. The
-  // stiffest of the two is damped the most.
+  // estimates of 1.3-25 and 1.3-28 keep their margins; stiffness-proportional damping by the
+  // factor of formStiffnessDampingFactor.
   formStiffnessDampingFactor();
   undampedStep_ = dt_;
   dt_ = dampedStep(dt_);
@@ -355,11 +351,9 @@ void Cycle::recordHistories(bool initial) {
   for (std::size_t i = 0; i < historySpecs_.size(); ++i) {
     const HistorySpec& h = historySpecs_[i];
     HistorySeries& series = histories_[i];
-    if (const auto velocity = velocityOfAcceleration(h.quantity)) {
+    if (isAcceleration(h.quantity)) {
       // (v(t + dt/2) - v(t - dt/2)) / dt, the acceleration the step's forces gave, at t.
-      HistorySpec of = h;
-      of.quantity = *velocity;
-      const double v = sampleHistory(model_, of, monitors_);
+      const double v = accelerationBaseVelocity(model_, h);
       const bool due = !initial && series.hasLastVelocity && model_.cycle % series.every == 0;
       const double a = (v - series.lastVelocity) / dt_;
       series.lastVelocity = v;
@@ -389,13 +383,9 @@ void Cycle::warnHalved(const HistorySpec& h, const HistorySeries& series) const 
 }
 
 void Cycle::restartAccelerations() {
-  for (std::size_t i = 0; i < historySpecs_.size(); ++i) {
-    const auto velocity = velocityOfAcceleration(historySpecs_[i].quantity);
-    if (!velocity) continue;
-    HistorySpec of = historySpecs_[i];
-    of.quantity = *velocity;
-    histories_[i].lastVelocity = sampleHistory(model_, of, monitors_);
-  }
+  for (std::size_t i = 0; i < historySpecs_.size(); ++i)
+    if (isAcceleration(historySpecs_[i].quantity))
+      histories_[i].lastVelocity = accelerationBaseVelocity(model_, historySpecs_[i]);
 }
 
 bool Cycle::stopReached(const StopCriteria& s, long long startCycle, double startTime, std::string& reason) const {
@@ -621,9 +611,12 @@ void Cycle::excavateRigidBlocks(const ExcavationRegion& region) {
 }
 
 void Cycle::formStiffnessDampingFactor() {
-  // The stiffest mode's xi = beta w / 2, w its frequency from the components' limits; formed
-  // again when a phase raises it (a lighter block released, zones excavated): the factor, like
-  // the step, may only shrink.
+  // Stiffness-proportional damping lowers the critical step of a mode of frequency w from 2 / w to
+  // (2 / w) (sqrt(1 + xi^2) - xi), xi = beta w / 2 (Belytschko, after 1.3-22). The rigid-block
+  // step is FRAC times the undamped critical step, so w = 2 FRAC / dt_b; the zones' estimate
+  // 2 sqrt(m / k) (1.3-25) is at most their critical step, so w <= 2 / dt_z; the stiffest is
+  // damped the most. Formed again when a phase raises w (a lighter block released, zones
+  // excavated): the factor, like the step, may only shrink.
   if (!(settings_.stiffnessDamping > 0.0)) return;
   const double wZones = hasZones_ ? 2.0 / (stepLimitOf("deformable-blocks") / settings_.zoneFraction) : 0.0;
   const double w = std::max(2.0 * settings_.frac / stepLimitOf("rigid-block-motion"), wZones);

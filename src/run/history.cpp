@@ -64,13 +64,17 @@ std::optional<HistoryQuantityInfo> findHistoryQuantity(std::string_view name) {
   return std::nullopt;
 }
 
-std::optional<HistoryQuantity> velocityOfAcceleration(HistoryQuantity q) {
-  switch (q) {
-    case HistoryQuantity::BlockAccelerationX: return HistoryQuantity::BlockVelocityX;
-    case HistoryQuantity::BlockAccelerationY: return HistoryQuantity::BlockVelocityY;
-    case HistoryQuantity::GridpointAccelerationX: return HistoryQuantity::GridpointVelocityX;
-    case HistoryQuantity::GridpointAccelerationY: return HistoryQuantity::GridpointVelocityY;
-    default: return std::nullopt;
+bool isAcceleration(HistoryQuantity q) {
+  return q == HistoryQuantity::BlockAccelerationX || q == HistoryQuantity::BlockAccelerationY ||
+         q == HistoryQuantity::GridpointAccelerationX || q == HistoryQuantity::GridpointAccelerationY;
+}
+
+double accelerationBaseVelocity(const Model& m, const HistorySpec& h) {
+  switch (h.quantity) {
+    case HistoryQuantity::BlockAccelerationX: return m.blocks.velocity[h.block].x;
+    case HistoryQuantity::BlockAccelerationY: return m.blocks.velocity[h.block].y;
+    case HistoryQuantity::GridpointAccelerationX: return m.gridpoints.velocity[h.gridpoint].x;
+    default: return m.gridpoints.velocity[h.gridpoint].y;
   }
 }
 

@@ -24,8 +24,6 @@ enum class HistoryQuantity {
   BlockAccelerationX, BlockAccelerationY, GridpointAccelerationX, GridpointAccelerationY,
 };
 
-// For an acceleration quantity, the velocity it is the rate of; nullopt for the others.
-std::optional<HistoryQuantity> velocityOfAcceleration(HistoryQuantity quantity);
 
 enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone };
 
@@ -52,6 +50,11 @@ struct HistorySpec {
   int zone = -1;        // Zone subject
   int every = 1;
 };
+
+// Acceleration quantities are formed by the cycle from the velocity they are the rate of:
+// accelerationBaseVelocity samples that velocity component of the spec's block or gridpoint.
+bool isAcceleration(HistoryQuantity quantity);
+double accelerationBaseVelocity(const Model& model, const HistorySpec& spec);
 
 // Model-wide measures of the current step, computed by the cycle.
 struct Monitors {
