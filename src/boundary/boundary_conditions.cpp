@@ -29,7 +29,12 @@ double addBoundaryCondition(Model& m, BoundaryCondition condition, double timeOr
     e.timeOrigin = timeOrigin;
     m.viscousEdges.push_back(e);
   }
-  if (!m.viscousEdges.empty()) g.dashpotForce.resize(g.size());
+  for (FreeFieldColumn c : condition.freeField) {
+    c.source = source;
+    c.timeOrigin = timeOrigin;
+    m.freeFields.push_back(std::move(c));
+  }
+  if (!m.viscousEdges.empty() || !m.freeFields.empty()) g.dashpotForce.resize(g.size());
   for (LoadedEdge e : condition.edges) {
     e.timeOrigin = timeOrigin;
     e.source = source;
@@ -48,6 +53,7 @@ bool freeBoundaryCondition(Model& m, const std::string& name) {
   std::erase_if(m.loadedEdges, [source](const LoadedEdge& e) { return e.source == source; });
   std::erase_if(m.drivenVelocities, [source](const DrivenVelocity& d) { return d.source == source; });
   std::erase_if(m.viscousEdges, [source](const ViscousEdge& e) { return e.source == source; });
+  std::erase_if(m.freeFields, [source](const FreeFieldColumn& c) { return c.source == source; });
   Gridpoints& g = m.gridpoints;
   for (const int i : found->gridpoints) g.driven[i] = (g.driven[i] & Excavated) ? DriveX | DriveY | Excavated : 0;
   for (const BoundaryCondition& b : m.boundaryConditions)

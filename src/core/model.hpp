@@ -166,6 +166,37 @@ struct ViscousEdge {
   double timeOrigin = 0.0;       // the history is f(t - timeOrigin)
 };
 
+// An outline edge of a deformable block coupled to a free-field column: dashpots of the block
+// material's impedances on the velocity relative to the column's (1.3-41).
+struct FreeFieldEdge {
+  int from = -1, to = -1;        // gridpoints, counter-clockwise along the block boundary
+  double normalImpedance = 0.0;  // rho C_p, Pa s/m
+  double shearImpedance = 0.0;   // rho C_s
+};
+
+// A one-dimensional free-field column (1.3.6.3) beside a vertical lateral boundary: the motion of
+// the unbounded layered medium under a vertically travelling wave, computed by the same explicit
+// scheme, and applied to the model's side as the column's stress plus dashpots on the velocity
+// relative to the column's. The column carries the dynamic motion only, from rest and zero
+// stress when it comes on; the side's static reactions of that moment are kept as loads.
+struct FreeFieldColumn {
+  std::vector<double> nodeY;      // initial heights of the nodes, bottom to top: those of the side's gridpoints
+  std::vector<double> nodeMass;   // rho (h_below + h_above) / 2, per unit width, kg/m
+  std::vector<Vec2> nodeVelocity; // at t - dt/2 before the stage, t + dt/2 after
+  // Element j lies between nodes j and j + 1: its block material and dynamic stress (tension positive).
+  std::vector<int> elementMaterial;
+  std::vector<double> sxx, syy, sxy;
+  double baseNormalImpedance = 0.0, baseShearImpedance = 0.0;  // dashpots of the column's base
+  Vec2 inputVelocity;             // the incident wave at the base, as a viscous boundary's
+  int history = -1;
+  double timeOrigin = 0.0;
+  double side = 0.0;              // x component of the side's outward normal: -1 left, +1 right
+  std::vector<FreeFieldEdge> edges;
+  std::vector<int> reactionGridpoint;  // static reactions kept on the side's gridpoints
+  std::vector<Vec2> reaction;
+  int source = -1;
+};
+
 // One [[boundary]] table (of the scene or of a phase) resolved to gridpoints and edges: what
 // boundary/boundary_conditions applies to a model and takes off it again.
 struct BoundaryCondition {
@@ -177,6 +208,7 @@ struct BoundaryCondition {
   int history = -1;
   std::vector<LoadedEdge> edges;     // loaded by a stress or pressure
   std::vector<ViscousEdge> dashpots; // viscous
+  std::vector<FreeFieldColumn> freeField;  // one column, or none
   bool active = true;
 };
 
@@ -271,6 +303,7 @@ struct Model {
   std::vector<DrivenVelocity> drivenVelocities;  // only those with a time history
   std::vector<BoundaryCondition> boundaryConditions;  // all ever applied, freed ones inactive
   std::vector<ViscousEdge> viscousEdges;
+  std::vector<FreeFieldColumn> freeFields;  // those in force
   std::vector<TimeFunction> timeFunctions;
   // The outline edges of deformable blocks (outer boundaries and holes), each directed with the
   // block on its left: gridpoints from -> to.

@@ -44,15 +44,21 @@ void visitState(A& a, Zones& z) {
   a(z.nodalForce);
 }
 template <class A>
+void visitState(A& a, FreeFieldColumn& c) {
+  a(c.nodeY), a(c.nodeMass), a(c.nodeVelocity), a(c.elementMaterial), a(c.sxx), a(c.syy), a(c.sxy);
+  a(c.baseNormalImpedance), a(c.baseShearImpedance), a(c.inputVelocity), a(c.history), a(c.timeOrigin), a(c.side);
+  a(c.edges), a(c.reactionGridpoint), a(c.reaction), a(c.source);
+}
+template <class A>
 void visitState(A& a, BoundaryCondition& b) {
   a(b.name), a(b.gridpoints), a(b.fix), a(b.velocityBits), a(b.velocity), a(b.history), a(b.edges), a(b.dashpots);
-  a(b.active);
+  a(b.freeField), a(b.active);
 }
 template <class A>
 void visitState(A& a, Model& m) {
   a(m.blockMaterials), a(m.jointMaterials), a(m.blocks), a(m.vertices), a(m.gridpoints), a(m.zones);
   a(m.gridpointZones.start), a(m.gridpointZones.slot), a(m.loadedEdges), a(m.drivenVelocities);
-  a(m.boundaryConditions), a(m.viscousEdges);
+  a(m.boundaryConditions), a(m.viscousEdges), a(m.freeFields);
   a(m.timeFunctions), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
   a(m.defaultJoint), a(m.gravity), a(m.roundingLength), a(m.contactTolerance), a(m.time), a(m.cycle);
 }

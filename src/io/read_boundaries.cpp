@@ -147,7 +147,8 @@ BoundaryDefinition readBoundary(TableReader& r) {
   BoundaryDefinition d;
   d.origin = r.origin();
   d.name = r.string("name", "");
-  d.block = r.string("block");
+  d.freeField = r.boolean("free_field", false);
+  d.block = d.freeField ? r.string("block", "") : r.string("block");
   // Which gridpoints: the ranges on their initial position, all optional.
   d.x = readRange(r, "x");
   d.y = readRange(r, "y");
@@ -156,22 +157,29 @@ BoundaryDefinition readBoundary(TableReader& r) {
   d.centre = r.vec2("centre", {0.0, 0.0});
   if (!r.has("r") && !r.has("angle") && !r.has("stress_table") && r.has("centre"))
     r.fail("centre", "is used only with r, angle or stress_table");
-  if (r.boolean("viscous", false)) {
+  const bool viscous = r.boolean("viscous", false);
+  if (viscous && d.freeField) r.fail("free_field", "a free-field boundary has dashpots of its own: drop viscous = true");
+  if (viscous || d.freeField) {
     for (const char* key : {"fix", "velocity_x", "velocity_y", "stress", "pressure", "stress_table",
                             "stress_gradient_x", "stress_gradient_y"})
       if (r.has(key))
-        r.fail(key, "a viscous boundary absorbs, and takes an incoming wave as input_velocity; give fixities, "
-                    "velocities and stresses in other tables");
-    d.viscous = true;
+        r.fail(key, std::string(viscous ? "a viscous boundary absorbs, and takes an incoming wave as input_velocity"
+                                        : "a free-field boundary applies the free field's motion and stress") +
+                        "; give fixities, velocities and stresses in other tables");
+    d.viscous = viscous;
+    if (d.freeField && !r.has("x"))
+      r.fail("free_field", "needs x = [x0, x0]: the vertical side beside which the column runs");
+    d.material = r.string("material", "");
     if (r.has("input_velocity")) d.inputVelocity = r.vec2("input_velocity");
     if (r.has("history")) {
-      if (!r.has("input_velocity")) r.fail("history", "scales the input_velocity of a viscous boundary; give input_velocity");
+      if (!r.has("input_velocity")) r.fail("history", "scales the input_velocity; give input_velocity");
       d.history = readTimeFunction(r, "history");
     }
     return d;
   }
+  if (r.has("material")) r.fail("material", "is the medium beyond a viscous or free-field boundary: it needs viscous = true or free_field = true");
   if (r.has("input_velocity"))
-    r.fail("input_velocity", "is the incoming wave of a viscous boundary: it needs viscous = true");
+    r.fail("input_velocity", "is the incoming wave of a viscous or free-field boundary: it needs viscous = true or free_field = true");
   const bool fix = r.has("fix"), vx = r.has("velocity_x"), vy = r.has("velocity_y");
   const bool tabulated = r.has("stress_table");
   const bool stress = r.has("stress") || tabulated, pressure = r.has("pressure");

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "boundary/boundary_conditions.hpp"
+#include "boundary/free_field.hpp"
 #include "boundary/viscous_boundary.hpp"
 #include "contact/deformable_outline.hpp"
 #include "motion/gridpoint_motion.hpp"
@@ -53,6 +54,16 @@ Component boundaries(RunContext& run) {
   if (!m.viscousEdges.empty()) c.stages.push_back({"viscous-boundaries", [&run] { applyViscousBoundaries(run.model); }});
   if (!m.drivenVelocities.empty())
     c.stages.push_back({"boundary-velocities", [&run] { applyDrivenVelocities(run.model, run.dt); }});
+  return c;
+}
+
+// The free-field columns beside the lateral boundaries (1.3.6.3): their loads on the sides are
+// forces of the step, and the columns move in the same stage, on their own.
+Component freeField(RunContext& run) {
+  Component c{"free-field", {}, [&run] { return freeFieldTimeStep(run.model); }};
+  c.stages.push_back({"free-field", [&run] {
+                        stepFreeFields(run.model, run.dt, run.massDamping, run.settings.stiffnessDamping);
+                      }});
   return c;
 }
 
@@ -108,6 +119,7 @@ std::vector<Component> sceneComponents(RunContext& run) {
   if (m.zones.size() > 0) {
     components.push_back(deformableBlocks(run));
     components.push_back(boundaries(run));
+    if (!m.freeFields.empty()) components.push_back(freeField(run));
   }
   return components;
 }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "boundary/boundary_conditions.hpp"
+#include "boundary/free_field.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "motion/rigid_motion.hpp"
@@ -433,13 +434,22 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
   if (!changes.blocks.empty()) changeRigidBlocks(changes.blocks);
   for (const ExcavationRegion& region : changes.excavations) excavate(region);
   const bool loaded = !model_.loadedEdges.empty(), driven = !model_.drivenVelocities.empty(),
-             viscous = !model_.viscousEdges.empty();
+             viscous = !model_.viscousEdges.empty(), freeField = !model_.freeFields.empty();
   for (const std::string& name : changes.freeBoundaries) freeBoundaryCondition(model_, name);
+  const int added = static_cast<int>(model_.boundaryConditions.size());
   for (const BoundaryCondition& b : changes.boundaries) energy_.withdraw(addBoundaryCondition(model_, b, model_.time));
+  for (FreeFieldColumn& c : model_.freeFields)
+    if (c.source >= added) keepStaticReactions(model_, c);
   // A stage for tractions or driven velocities where there were none before, or none where they all went.
   if (loaded != !model_.loadedEdges.empty() || driven != !model_.drivenVelocities.empty() ||
-      viscous != !model_.viscousEdges.empty())
+      viscous != !model_.viscousEdges.empty() || freeField != !model_.freeFields.empty())
     buildStages();
+  if (!model_.freeFields.empty()) {
+    // A column of softer or finer elements than the model's may need a shorter step.
+    formStiffnessDampingFactor();
+    undampedStep_ = std::min(undampedStep_, stepLimitOf("free-field"));
+    dt_ = std::min(dt_, dampedStep(undampedStep_));
+  }
   Blocks& bl = model_.blocks;
   Gridpoints& g = model_.gridpoints;
   if (changes.resetVelocities) {
@@ -619,7 +629,8 @@ void Cycle::formStiffnessDampingFactor() {
   // excavated): the factor, like the step, may only shrink.
   if (!(settings_.stiffnessDamping > 0.0)) return;
   const double wZones = hasZones_ ? 2.0 / (stepLimitOf("deformable-blocks") / settings_.zoneFraction) : 0.0;
-  const double w = std::max(2.0 * settings_.frac / stepLimitOf("rigid-block-motion"), wZones);
+  const double w = std::max({2.0 * settings_.frac / stepLimitOf("rigid-block-motion"), wZones,
+                             2.0 / stepLimitOf("free-field")});
   const double xi = 0.5 * settings_.stiffnessDamping * w;
   stiffnessDampingStepFactor_ = std::min(stiffnessDampingStepFactor_, std::sqrt(1.0 + xi * xi) - xi);
 }

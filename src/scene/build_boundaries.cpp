@@ -1,5 +1,5 @@
-// Boundary definitions resolved to the gridpoints and edges of their deformable block, and the
-// gridpoints and zones that histories sample.
+// Boundary definitions resolved to the gridpoints and edges of their deformable blocks (and the
+// free-field columns beside them), and the gridpoints and zones that histories sample.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -25,21 +25,95 @@ namespace {
 
 double polarAngleDegrees(Vec2 d) { return std::atan2(d.y, d.x) * 180.0 / std::numbers::pi; }
 
+// The impedances rho C_p and rho C_s of a material.
+std::pair<double, double> impedances(const BlockMaterial& mat) {
+  return {std::sqrt(mat.density * (mat.bulk + 4.0 * mat.shear / 3.0)), std::sqrt(mat.density * mat.shear)};
+}
+
+int historyOf(const BoundaryDefinition& d, Model& m) {
+  if (!d.history) return -1;
+  m.timeFunctions.push_back(*d.history);
+  return static_cast<int>(m.timeFunctions.size()) - 1;
+}
+
+// The free-field column beside the selected side edges (all vertical, all on one side): its
+// nodes at the heights of their end gridpoints, each element of the material of the edge beside it.
+FreeFieldColumn freeFieldColumn(const BoundaryDefinition& d, Model& m, const std::vector<Model::BoundaryEdge>& edges,
+                                double slack) {
+  const Gridpoints& g = m.gridpoints;
+  FreeFieldColumn c;
+  for (const Model::BoundaryEdge& be : edges) {
+    const Vec2 a = g.initialPosition[be.from], b = g.initialPosition[be.to];
+    if (std::abs(b.x - a.x) > slack)
+      d.origin.fail("x", "selects the edge from (" + shown(a.x) + ", " + shown(a.y) + ") to (" + shown(b.x) + ", " +
+                             shown(b.y) + ") of block '" + m.blocks.name[be.block] +
+                             "', which is not vertical: a free-field column runs beside a vertical side");
+    const double side = b.y < a.y ? -1.0 : 1.0;  // counter-clockwise: going down on the left side
+    if (c.side != 0.0 && c.side != side)
+      d.origin.fail("x", "selects edges of a left side and of a right side: give one free-field table per side");
+    c.side = side;
+    const auto [zn, zs] = impedances(m.blockMaterials[m.blocks.material[be.block]]);
+    c.edges.push_back({be.from, be.to, zn, zs});
+    c.nodeY.insert(c.nodeY.end(), {a.y, b.y});
+  }
+  std::sort(c.nodeY.begin(), c.nodeY.end());
+  c.nodeY.erase(std::unique(c.nodeY.begin(), c.nodeY.end(), [slack](double u, double v) { return v - u <= slack; }),
+                c.nodeY.end());
+  const std::size_t elements = c.nodeY.size() - 1;
+  c.elementMaterial.assign(elements, -1);
+  for (std::size_t e = 0; e < elements; ++e) {
+    const double mid = 0.5 * (c.nodeY[e] + c.nodeY[e + 1]);
+    for (const Model::BoundaryEdge& be : edges) {
+      const double ya = g.initialPosition[be.from].y, yb = g.initialPosition[be.to].y;
+      if (std::min(ya, yb) <= mid && mid <= std::max(ya, yb)) c.elementMaterial[e] = m.blocks.material[be.block];
+    }
+    if (c.elementMaterial[e] < 0)
+      d.origin.failTable("leaves the side uncovered between y = " + shown(c.nodeY[e]) + " and " + shown(c.nodeY[e + 1]) +
+                         " m: a free-field column needs an unbroken vertical side (widen y, or split the model's side)");
+  }
+  c.nodeMass.assign(c.nodeY.size(), 0.0);
+  for (std::size_t e = 0; e < elements; ++e) {
+    const double half = 0.5 * m.blockMaterials[c.elementMaterial[e]].density * (c.nodeY[e + 1] - c.nodeY[e]);
+    c.nodeMass[e] += half;
+    c.nodeMass[e + 1] += half;
+  }
+  c.nodeVelocity.assign(c.nodeY.size(), Vec2{});
+  c.sxx.assign(elements, 0.0);
+  c.syy.assign(elements, 0.0);
+  c.sxy.assign(elements, 0.0);
+  const int base = d.material.empty() ? c.elementMaterial.front() : blockMaterialNamed(m, d.origin, "material", d.material);
+  std::tie(c.baseNormalImpedance, c.baseShearImpedance) = impedances(m.blockMaterials[base]);
+  c.inputVelocity = d.inputVelocity;
+  c.history = historyOf(d, m);
+  return c;
+}
+
 }  // namespace
 
 BoundaryCondition resolveBoundary(const BoundaryDefinition& d, Model& m) {
   BoundaryCondition condition;
   condition.name = d.name;
-  const int block = blockNamed(m, d.origin, "block", d.block);
-  if (!m.blocks.deformable[block])
-    d.origin.fail("block", "block '" + m.blocks.name[block] + "' is rigid: [[boundary]] applies to deformable blocks; "
-                           "give a rigid block `fix`, `velocity` or `force` in its [[block]] table");
-  // Selection slack: round-off of the generated coordinates, relative to the block's size.
-  const double slack = 1e-9 * std::max(1.0, 2.0 * m.blocks.boundingRadius[block]);
+  // The blocks it selects from: the one named, or every deformable block for a free field.
+  std::vector<char> inBlocks(m.blocks.size(), 0);
+  if (d.block.empty()) {
+    for (int b = 0; b < m.blocks.size(); ++b) inBlocks[b] = m.blocks.deformable[b];
+  } else {
+    const int block = blockNamed(m, d.origin, "block", d.block);
+    if (!m.blocks.deformable[block])
+      d.origin.fail("block", "block '" + m.blocks.name[block] + "' is rigid: [[boundary]] applies to deformable blocks; "
+                             "give a rigid block `fix`, `velocity` or `force` in its [[block]] table");
+    inBlocks[block] = 1;
+  }
+  const std::string which = d.block.empty() ? "any deformable block" : "block '" + d.block + "'";
+  // Selection slack: round-off of the generated coordinates, relative to the blocks' size.
+  double size = 1.0;
+  for (int b = 0; b < m.blocks.size(); ++b)
+    if (inBlocks[b]) size = std::max(size, 2.0 * m.blocks.boundingRadius[b]);
+  const double slack = 1e-9 * size;
   std::vector<char> selected(m.gridpoints.size(), 0);
   int count = 0;
   for (int i = 0; i < m.gridpoints.size(); ++i) {
-    if (m.gridpoints.block[i] != block) continue;
+    if (!inBlocks[m.gridpoints.block[i]]) continue;
     const Vec2 p = m.gridpoints.initialPosition[i];
     const Vec2 r = p - d.centre;
     if (d.x.holds(p.x, slack) && d.y.holds(p.y, slack) && d.r.holds(norm(r), slack) &&
@@ -48,28 +122,34 @@ BoundaryCondition resolveBoundary(const BoundaryDefinition& d, Model& m) {
       ++count;
     }
   }
-  if (count == 0) d.origin.failTable("selects no gridpoint of block '" + m.blocks.name[block] + "': check x, y, r, angle");
-  // Edges of the block's outline whose two ends are both selected.
+  if (count == 0) d.origin.failTable("selects no gridpoint of " + which + ": check x, y, r, angle");
+  // Edges of the blocks' outlines whose two ends are both selected.
   auto selectedEdges = [&] {
     std::vector<Model::BoundaryEdge> edges;
     for (const Model::BoundaryEdge& be : m.boundaryEdges)
-      if (be.block == block && selected[be.from] && selected[be.to]) edges.push_back(be);
+      if (inBlocks[be.block] && selected[be.from] && selected[be.to]) edges.push_back(be);
     return edges;
   };
+  auto noEdge = [&](const std::string& what) {
+    d.origin.failTable("selects no boundary edge of " + which + ": " + what +
+                       " act on edges of the block's outline whose two ends are both selected");
+  };
 
+  if (d.freeField) {
+    const std::vector<Model::BoundaryEdge> edges = selectedEdges();
+    if (edges.empty()) noEdge("free-field columns");
+    condition.freeField.push_back(freeFieldColumn(d, m, edges, slack));
+    return condition;
+  }
   if (d.viscous) {
-    const BlockMaterial& mat = m.blockMaterials[m.blocks.material[block]];
-    int history = -1;
-    if (d.history) {
-      m.timeFunctions.push_back(*d.history);
-      history = static_cast<int>(m.timeFunctions.size()) - 1;
+    const int history = historyOf(d, m);
+    for (const Model::BoundaryEdge& be : selectedEdges()) {
+      const int material = d.material.empty() ? m.blocks.material[be.block]
+                                               : blockMaterialNamed(m, d.origin, "material", d.material);
+      const auto [zn, zs] = impedances(m.blockMaterials[material]);
+      condition.dashpots.push_back({be.from, be.to, zn, zs, -1, d.inputVelocity, history, 0.0});
     }
-    for (const Model::BoundaryEdge& be : selectedEdges())
-      condition.dashpots.push_back({be.from, be.to, std::sqrt(mat.density * (mat.bulk + 4.0 * mat.shear / 3.0)),
-                                    std::sqrt(mat.density * mat.shear), -1, d.inputVelocity, history, 0.0});
-    if (condition.dashpots.empty())
-      d.origin.failTable("selects no boundary edge of block '" + m.blocks.name[block] +
-                         "': dashpots act on edges of the block's outline whose two ends are both selected");
+    if (condition.dashpots.empty()) noEdge("dashpots");
     return condition;
   }
   if (d.history) {
@@ -103,9 +183,7 @@ BoundaryCondition resolveBoundary(const BoundaryDefinition& d, Model& m) {
     }
     condition.edges.push_back(e);
   }
-  if (condition.edges.empty())
-    d.origin.failTable("selects no boundary edge of block '" + m.blocks.name[block] +
-                       "': stress and pressure act on edges of the block's outline whose two ends are both selected");
+  if (condition.edges.empty()) noEdge("stress and pressure");
   return condition;
 }
 

@@ -99,7 +99,9 @@ struct BoundaryDefinition {
   CoordinateRange x, y, r, angle;  // on the initial positions; r and angle about `centre`
   Vec2 centre;
   bool viscous = false;
-  Vec2 inputVelocity;  // viscous: the incident particle velocity of a wave entering through it
+  bool freeField = false;  // a free-field column beside the selected (vertical) side; `block` optional
+  Vec2 inputVelocity;  // viscous, free field: the incident particle velocity of a wave entering at the base
+  std::string material;  // viscous, free field: the medium beyond the boundary, whose impedances the dashpots take
   std::uint8_t fix = 0;           // DriveX / DriveY
   std::uint8_t velocityBits = 0;  // components driven at `velocity`
   Vec2 velocity;
