@@ -14,9 +14,11 @@ namespace vdec {
 // (negative when they gave some), which the energy account must hear of.
 double addBoundaryCondition(Model& model, BoundaryCondition condition, double timeOrigin);
 
-// Takes the active condition named `name` off: its loaded edges and driven velocities go, and
-// its gridpoints keep only the drives of the conditions still active, moving on freely from
-// their present velocity where none is left. False when no active condition has that name.
-bool freeBoundaryCondition(Model& model, const std::string& name);
+// Takes the active condition named `name` off (the phase builder has checked that there is one):
+// its loaded edges, driven velocities, dashpots and free-field columns go, and its gridpoints keep
+// only the drives of the conditions still active, moving on freely from their present velocity
+// where none is left. Returns the kinetic energy of the components set free, which the energy
+// account must be given (driven components carry none in it).
+double freeBoundaryCondition(Model& model, const std::string& name);
 
 }  // namespace vdec

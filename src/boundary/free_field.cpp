@@ -148,7 +148,11 @@ double freeFieldTimeStep(const Model& m) {
       rowSum[e] += k;
       rowSum[e + 1] += k;
     }
-    for (std::size_t j = 0; j < rowSum.size(); ++j) step = std::min(step, 2.0 * std::sqrt(c.nodeMass[j] / rowSum[j]));
+    // With the base's dashpot c on the lagged velocity: (w dt)^2 + 2 c dt / m < 4 (as dashpotTimeStep).
+    for (std::size_t j = 0; j < rowSum.size(); ++j) {
+      const double dashpot = j == 0 ? std::max(c.baseNormalImpedance, c.baseShearImpedance) : 0.0, mass = c.nodeMass[j];
+      step = std::min(step, 4.0 * mass / (dashpot + std::sqrt(dashpot * dashpot + 4.0 * rowSum[j] * mass)));
+    }
   }
   return step;
 }

@@ -22,7 +22,8 @@ void keepStaticReactions(const Model& model, FreeFieldColumn& column);
 void stepFreeFields(Model& model, double dt, double alpha, double beta);
 
 // The largest stable step of the columns: a lumped-mass chain's highest frequency is at most
-// sqrt(max_j (sum_k |K_jk|) / m_j) (Gershgorin), which for a uniform column gives dt = h / C_p.
+// sqrt(max_j (sum_k |K_jk|) / m_j) (Gershgorin), which for a uniform column gives dt = h / C_p;
+// less at the base, whose dashpot acts on the lagged velocity (viscous_boundary.hpp).
 double freeFieldTimeStep(const Model& model);
 
 }  // namespace vdec

@@ -10,4 +10,24 @@ namespace vdec {
 // over half the edge's present length.
 void applyViscousBoundaries(Model& model);
 
+// The same dashpots and incoming wave on viscous edges of rigid blocks: each edge's traction,
+// linear along it with the block's velocity v + w x r (of the half step just ended), integrated
+// exactly into a force and a moment about the centroid (Simpson's rule), added to
+// blocks.dashpotForce/Moment; the incoming wave's constant traction to blocks.boundaryForce/Moment.
+void applyRigidViscousBoundaries(Model& model);
+
+// The largest stable step of rigid blocks with viscous edges, as dashpotTimeStep with the block's
+// mass (inertia), the dashpot's resistance to translation (rotation) and the joint stiffness
+// of the rigid-block step (1.3-28), times FRAC. Infinite without such edges.
+double rigidDashpotTimeStep(const Model& model, double frac);
+
+// The largest stable step of the gridpoints that dashpots act on (viscous edges and the side
+// edges of free-field columns). A dashpot on the velocity of the half step before, with the
+// central-difference update of a mass m, spring k and dashpot c, is stable for
+// (w dt)^2 + 2 c dt / m < 4, w^2 = k / m (the characteristic roots of
+// x+ = (2 - w^2 dt^2 - c dt / m) x - (1 - c dt / m) x-): dt = 4 m / (c + sqrt(c^2 + 4 k m)), the
+// zone step 2 sqrt(m / k) of 1.3-25 when c = 0. k is the gridpoint's stiffness of 1.3-26, c the
+// larger of its normal and shear dashpots. Infinite without dashpots.
+double dashpotTimeStep(const Model& model);
+
 }  // namespace vdec

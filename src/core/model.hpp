@@ -78,6 +78,13 @@ struct Blocks {
   std::vector<double> moment;
   std::vector<Vec2> appliedForce;     // constant user loads
   std::vector<double> appliedMoment;
+  // Viscous boundaries' forces and moments of the step (per-step accumulators, empty without
+  // viscous edges on rigid blocks): the dashpots' (which dissipate) and the incoming wave's
+  // (a load).
+  std::vector<Vec2> dashpotForce;
+  std::vector<double> dashpotMoment;
+  std::vector<Vec2> boundaryForce;
+  std::vector<double> boundaryMoment;
   // A deformable block moves through its gridpoints and zones; the rigid-body fields above
   // then describe its input polygon only, and rigid motion leaves it alone.
   std::vector<std::uint8_t> deformable;
@@ -166,6 +173,19 @@ struct ViscousEdge {
   double timeOrigin = 0.0;       // the history is f(t - timeOrigin)
 };
 
+// A viscous boundary edge of a rigid block: as ViscousEdge, between two of its vertices (ids into
+// Vertices), the dashpots acting on the block's velocity along the edge.
+struct RigidViscousEdge {
+  int block = -1;
+  int from = -1, to = -1;        // vertices, counter-clockwise along the block boundary
+  double normalImpedance = 0.0;
+  double shearImpedance = 0.0;
+  int source = -1;
+  Vec2 inputVelocity;
+  int history = -1;
+  double timeOrigin = 0.0;
+};
+
 // An outline edge of a deformable block coupled to a free-field column: dashpots of the block
 // material's impedances on the velocity relative to the column's (1.3-41).
 struct FreeFieldEdge {
@@ -208,6 +228,7 @@ struct BoundaryCondition {
   int history = -1;
   std::vector<LoadedEdge> edges;     // loaded by a stress or pressure
   std::vector<ViscousEdge> dashpots; // viscous
+  std::vector<RigidViscousEdge> rigidDashpots;  // viscous, on a rigid block
   std::vector<FreeFieldColumn> freeField;  // one column, or none
   bool active = true;
 };
@@ -303,6 +324,7 @@ struct Model {
   std::vector<DrivenVelocity> drivenVelocities;  // only those with a time history
   std::vector<BoundaryCondition> boundaryConditions;  // all ever applied, freed ones inactive
   std::vector<ViscousEdge> viscousEdges;
+  std::vector<RigidViscousEdge> rigidViscousEdges;
   std::vector<FreeFieldColumn> freeFields;  // those in force
   std::vector<TimeFunction> timeFunctions;
   // The outline edges of deformable blocks (outer boundaries and holes), each directed with the
@@ -319,6 +341,10 @@ struct Model {
   void clearStepForces() {
     std::fill(blocks.force.begin(), blocks.force.end(), Vec2{});
     std::fill(blocks.moment.begin(), blocks.moment.end(), 0.0);
+    std::fill(blocks.dashpotForce.begin(), blocks.dashpotForce.end(), Vec2{});
+    std::fill(blocks.dashpotMoment.begin(), blocks.dashpotMoment.end(), 0.0);
+    std::fill(blocks.boundaryForce.begin(), blocks.boundaryForce.end(), Vec2{});
+    std::fill(blocks.boundaryMoment.begin(), blocks.boundaryMoment.end(), 0.0);
     std::fill(gridpoints.contactForce.begin(), gridpoints.contactForce.end(), Vec2{});
     std::fill(gridpoints.tractionForce.begin(), gridpoints.tractionForce.end(), Vec2{});
     std::fill(gridpoints.dashpotForce.begin(), gridpoints.dashpotForce.end(), Vec2{});

@@ -26,7 +26,8 @@ void visitState(A& a, Blocks& b) {
   a(b.name), a(b.material), a(b.firstVertex), a(b.vertexCount), a(b.mass), a(b.inertia), a(b.driven);
   a(b.boundingRadius), a(b.initialCentroid), a(b.centroid), a(b.rotation), a(b.velocity), a(b.angularVelocity);
   a(b.force), a(b.moment), a(b.appliedForce), a(b.appliedMoment), a(b.deformable), a(b.velocityHistory);
-  a(b.inputVelocity), a(b.inputAngularVelocity);
+  a(b.inputVelocity), a(b.inputAngularVelocity), a(b.dashpotForce), a(b.dashpotMoment), a(b.boundaryForce);
+  a(b.boundaryMoment);
 }
 template <class A>
 void visitState(A& a, Vertices& v) {
@@ -52,13 +53,13 @@ void visitState(A& a, FreeFieldColumn& c) {
 template <class A>
 void visitState(A& a, BoundaryCondition& b) {
   a(b.name), a(b.gridpoints), a(b.fix), a(b.velocityBits), a(b.velocity), a(b.history), a(b.edges), a(b.dashpots);
-  a(b.freeField), a(b.active);
+  a(b.rigidDashpots), a(b.freeField), a(b.active);
 }
 template <class A>
 void visitState(A& a, Model& m) {
   a(m.blockMaterials), a(m.jointMaterials), a(m.blocks), a(m.vertices), a(m.gridpoints), a(m.zones);
   a(m.gridpointZones.start), a(m.gridpointZones.slot), a(m.loadedEdges), a(m.drivenVelocities);
-  a(m.boundaryConditions), a(m.viscousEdges), a(m.freeFields);
+  a(m.boundaryConditions), a(m.viscousEdges), a(m.rigidViscousEdges), a(m.freeFields);
   a(m.timeFunctions), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
   a(m.defaultJoint), a(m.gravity), a(m.roundingLength), a(m.contactTolerance), a(m.time), a(m.cycle);
 }

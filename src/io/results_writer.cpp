@@ -148,6 +148,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
               {"unbalanced_ratio", report.lastMonitors.unbalancedRatio},
               {"stage_seconds", profile}};
   if (report.stiffnessDampingStepFactor != 1.0) j["run"]["stiffness_damping_step_factor"] = report.stiffnessDampingStepFactor;
+  j["run"]["step_limits"] = nlohmann::json::object();
+  for (const auto& [component, limit] : report.stepLimits) j["run"]["step_limits"][component] = limit;
   j["energy"] = {{"initial", report.energy.initial},
                  {"external_work", report.energy.externalWork},
                  {"kinetic", report.energy.kinetic},

@@ -26,13 +26,14 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha, double 
   const double lose = 1.0 - 0.5 * alpha * dt, keep = 1.0 / (1.0 + 0.5 * alpha * dt);
   // One degree of freedom: integrated by 1.3-21 when free, held at its velocity when driven.
   // Returns the new velocity; accumulates kinetic energy, external work and unbalanced force.
-  auto advance = [&](bool driven, double v0, double inertia, double contact, double body, double& unbalanced) {
+  auto advance = [&](bool driven, double v0, double inertia, double contact, double body, double dashpot,
+                     double& unbalanced) {
     if (driven) {
       // The driver does work on the rest of the model through the contact force it receives.
       totals.externalWork -= contact * v0 * dt;
       return v0;
     }
-    const double load = contact + body;
+    const double load = contact + body + dashpot;
     unbalanced += load * load;
     // 1.3-21: v(t+dt/2) = [v(t-dt/2)(1 - a dt/2) + (F/m + g) dt] / (1 + a dt/2)
     const double damping = localDampingForce(local, load, v0);
@@ -46,6 +47,7 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha, double 
     totals.dampingPower += inertia * vbar * vbar;
     totals.kineticRate += inertia * vbar * (v1 - v0) / dt;
     totals.externalWork += body * v1 * dt;
+    totals.boundaryDissipation -= dashpot * vbar * dt;
     return v1;
   };
   for (int b = 0; b < bl.size(); ++b) {
@@ -53,13 +55,18 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha, double 
     const std::uint8_t driven = bl.driven[b];
     setDrivenVelocities(m, b, m.time + 0.5 * dt);  // v(t + dt/2), of the half step about to be taken
     const double mass = bl.mass[b];
-    const Vec2 body = mass * m.gravity + bl.appliedForce[b];
+    // Viscous edges: the dashpots' force, and the incoming wave's as a load.
+    const bool viscous = !bl.dashpotForce.empty();
+    const Vec2 dashpot = viscous ? bl.dashpotForce[b] : Vec2{};
+    const double dashpotMoment = viscous ? bl.dashpotMoment[b] : 0.0;
+    const Vec2 body = mass * m.gravity + bl.appliedForce[b] + (viscous ? bl.boundaryForce[b] : Vec2{});
+    const double bodyMoment = bl.appliedMoment[b] + (viscous ? bl.boundaryMoment[b] : 0.0);
     double unbalanced = 0.0;
-    const Vec2 v{advance(driven & DriveX, bl.velocity[b].x, mass, bl.force[b].x, body.x, unbalanced),
-                 advance(driven & DriveY, bl.velocity[b].y, mass, bl.force[b].y, body.y, unbalanced)};
+    const Vec2 v{advance(driven & DriveX, bl.velocity[b].x, mass, bl.force[b].x, body.x, dashpot.x, unbalanced),
+                 advance(driven & DriveY, bl.velocity[b].y, mass, bl.force[b].y, body.y, dashpot.y, unbalanced)};
     double momentUnbalanced = 0.0;
-    const double w = advance(driven & DriveRotation, bl.angularVelocity[b], bl.inertia[b], bl.moment[b],
-                             bl.appliedMoment[b], momentUnbalanced);
+    const double w = advance(driven & DriveRotation, bl.angularVelocity[b], bl.inertia[b], bl.moment[b], bodyMoment,
+                             dashpotMoment, momentUnbalanced);
     totals.largestUnbalancedForce = std::max(totals.largestUnbalancedForce, std::sqrt(unbalanced));
     bl.velocity[b] = v;
     bl.angularVelocity[b] = w;

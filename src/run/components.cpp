@@ -1,4 +1,5 @@
 // Each component's stages and step limit, as sceneComponents gives them to the cycle.
+#include <algorithm>
 #include <cmath>
 
 #include "boundary/boundary_conditions.hpp"
@@ -50,8 +51,16 @@ Component contacts(RunContext& run) {
 Component boundaries(RunContext& run) {
   Component c{"boundaries", {}, {}};
   const Model& m = run.model;
+  const bool gridDashpots = !m.viscousEdges.empty() || !m.freeFields.empty(), rigidDashpots = !m.rigidViscousEdges.empty();
+  if (gridDashpots || rigidDashpots)
+    c.stepLimit = [&run, gridDashpots, rigidDashpots] {
+      return std::min(gridDashpots ? run.settings.zoneFraction * dashpotTimeStep(run.model) : INFINITY,
+                      rigidDashpots ? rigidDashpotTimeStep(run.model, run.settings.frac) : INFINITY);
+    };
   if (!m.loadedEdges.empty()) c.stages.push_back({"boundary-tractions", [&run] { applyEdgeTractions(run.model); }});
   if (!m.viscousEdges.empty()) c.stages.push_back({"viscous-boundaries", [&run] { applyViscousBoundaries(run.model); }});
+  if (rigidDashpots)
+    c.stages.push_back({"rigid-viscous-boundaries", [&run] { applyRigidViscousBoundaries(run.model); }});
   if (!m.drivenVelocities.empty())
     c.stages.push_back({"boundary-velocities", [&run] { applyDrivenVelocities(run.model, run.dt); }});
   return c;
@@ -116,11 +125,9 @@ std::vector<Component> sceneComponents(RunContext& run) {
   std::vector<Component> components;
   if (m.blocks.size() > 1) components.push_back(contacts(run));
   if (anyRigidBlock(m)) components.push_back(rigidMotion(run));
-  if (m.zones.size() > 0) {
-    components.push_back(deformableBlocks(run));
-    components.push_back(boundaries(run));
-    if (!m.freeFields.empty()) components.push_back(freeField(run));
-  }
+  if (m.zones.size() > 0) components.push_back(deformableBlocks(run));
+  if (m.zones.size() > 0 || !m.rigidViscousEdges.empty()) components.push_back(boundaries(run));
+  if (!m.freeFields.empty()) components.push_back(freeField(run));
   return components;
 }
 

@@ -434,20 +434,22 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
   if (!changes.blocks.empty()) changeRigidBlocks(changes.blocks);
   for (const ExcavationRegion& region : changes.excavations) excavate(region);
   const bool loaded = !model_.loadedEdges.empty(), driven = !model_.drivenVelocities.empty(),
-             viscous = !model_.viscousEdges.empty(), freeField = !model_.freeFields.empty();
-  for (const std::string& name : changes.freeBoundaries) freeBoundaryCondition(model_, name);
+             viscous = !model_.viscousEdges.empty(), freeField = !model_.freeFields.empty(),
+             rigidViscous = !model_.rigidViscousEdges.empty();
+  for (const std::string& name : changes.freeBoundaries) energy_.withdraw(-freeBoundaryCondition(model_, name));
   const int added = static_cast<int>(model_.boundaryConditions.size());
   for (const BoundaryCondition& b : changes.boundaries) energy_.withdraw(addBoundaryCondition(model_, b, model_.time));
   for (FreeFieldColumn& c : model_.freeFields)
     if (c.source >= added) keepStaticReactions(model_, c);
   // A stage for tractions or driven velocities where there were none before, or none where they all went.
   if (loaded != !model_.loadedEdges.empty() || driven != !model_.drivenVelocities.empty() ||
-      viscous != !model_.viscousEdges.empty() || freeField != !model_.freeFields.empty())
+      viscous != !model_.viscousEdges.empty() || freeField != !model_.freeFields.empty() ||
+      rigidViscous != !model_.rigidViscousEdges.empty())
     buildStages();
-  if (!model_.freeFields.empty()) {
-    // A column of softer or finer elements than the model's may need a shorter step.
+  if (!changes.boundaries.empty()) {
+    // Dashpots and free-field columns brought on may need a shorter step.
     formStiffnessDampingFactor();
-    undampedStep_ = std::min(undampedStep_, stepLimitOf("free-field"));
+    undampedStep_ = std::min({undampedStep_, stepLimitOf("boundaries"), stepLimitOf("free-field")});
     dt_ = std::min(dt_, dampedStep(undampedStep_));
   }
   Blocks& bl = model_.blocks;
@@ -752,6 +754,8 @@ RunReport Cycle::run() {
   report.staticSolveSeconds = staticSolveSeconds_;
   report.staticSolveResidual = staticSolveResidual_;
   report.stiffnessDampingStepFactor = stiffnessDampingStepFactor_;
+  for (const Component& c : components_)
+    if (c.stepLimit) report.stepLimits.emplace_back(c.name, c.stepLimit());
   report.wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
   return report;
 }

@@ -57,6 +57,9 @@ struct RunReport {
   // converged; larger when joints slipped or opened during it (the cycles then finish the job).
   double staticSolveResidual = -1.0;
   double stiffnessDampingStepFactor = 1.0;  // sqrt(1 + xi^2) - xi when stiffness damping is on
+  // Each component's largest stable step (s) at the end of the run, before the damping reductions:
+  // the step is the smallest of them times those reductions.
+  std::vector<std::pair<std::string, double>> stepLimits;
   double wallSeconds = 0.0;
   // Set when a numerical error stopped the run; the report then holds the state up to it.
   std::string error;

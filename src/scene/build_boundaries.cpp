@@ -88,6 +88,37 @@ FreeFieldColumn freeFieldColumn(const BoundaryDefinition& d, Model& m, const std
   return c;
 }
 
+// A viscous boundary on the edges of a rigid block whose two end vertices the ranges select (at
+// the block's input position).
+BoundaryCondition rigidViscousBoundary(const BoundaryDefinition& d, Model& m, int block) {
+  BoundaryCondition condition;
+  condition.name = d.name;
+  const int material = d.material.empty() ? m.blocks.material[block] : blockMaterialNamed(m, d.origin, "material", d.material);
+  const BlockMaterial& mat = m.blockMaterials[material];
+  if (!mat.elastic())
+    d.origin.fail(d.material.empty() ? "block" : "material",
+                  "block material '" + mat.name + "' has no elastic constants, and the dashpots need its wave speeds: give "
+                  "it young and poisson, or name the medium beyond the boundary with material = \"...\"");
+  const auto [zn, zs] = impedances(mat);
+  const int first = m.blocks.firstVertex[block], count = m.blocks.vertexCount[block];
+  const double slack = 1e-9 * std::max(1.0, 2.0 * m.blocks.boundingRadius[block]);
+  auto selected = [&](int v) {
+    const Vec2 p = m.vertices.geometry[v].position, r = p - d.centre;
+    return d.x.holds(p.x, slack) && d.y.holds(p.y, slack) && d.r.holds(norm(r), slack) &&
+           d.angle.holds(polarAngleDegrees(r), 1e-7);
+  };
+  const int history = historyOf(d, m);
+  for (int k = 0; k < count; ++k) {
+    const int from = first + k, to = first + (k + 1) % count;
+    if (selected(from) && selected(to))
+      condition.rigidDashpots.push_back({block, from, to, zn, zs, -1, d.inputVelocity, history, 0.0});
+  }
+  if (condition.rigidDashpots.empty())
+    d.origin.failTable("selects no edge of rigid block '" + m.blocks.name[block] +
+                       "': dashpots act on the edges whose two end vertices are both selected");
+  return condition;
+}
+
 }  // namespace
 
 BoundaryCondition resolveBoundary(const BoundaryDefinition& d, Model& m) {
@@ -99,9 +130,12 @@ BoundaryCondition resolveBoundary(const BoundaryDefinition& d, Model& m) {
     for (int b = 0; b < m.blocks.size(); ++b) inBlocks[b] = m.blocks.deformable[b];
   } else {
     const int block = blockNamed(m, d.origin, "block", d.block);
-    if (!m.blocks.deformable[block])
-      d.origin.fail("block", "block '" + m.blocks.name[block] + "' is rigid: [[boundary]] applies to deformable blocks; "
-                             "give a rigid block `fix`, `velocity` or `force` in its [[block]] table");
+    if (!m.blocks.deformable[block]) {
+      if (d.viscous) return rigidViscousBoundary(d, m, block);
+      d.origin.fail("block", "block '" + m.blocks.name[block] + "' is rigid: [[boundary]] applies to deformable blocks, and "
+                             "to rigid ones only as viscous = true; give a rigid block `fix`, `velocity` or `force` in "
+                             "its [[block]] table");
+    }
     inBlocks[block] = 1;
   }
   const std::string which = d.block.empty() ? "any deformable block" : "block '" + d.block + "'";

@@ -585,6 +585,19 @@ def test_half_sine_pulse_and_constrained_wave_speed():
 
 
 @pytest.mark.requirements("REQ-QA-003")
+def test_hann_pulse_is_zero_outside_and_sine_squared_inside():
+    c = 1264.9110640673518
+    arrival = 50.0 / c
+    v = el.hann_pulse_velocity([arrival - 1e-6, arrival + 0.02, arrival + 0.01, arrival + 0.0400001],
+                               distance=50.0, c=c, amplitude=0.02, duration=0.04)
+    assert v[0] == 0.0 and v[3] == 0.0
+    assert v[1] == pytest.approx(0.02, rel=1e-12, abs=0)
+    assert v[2] == pytest.approx(0.01, rel=1e-12, abs=0)
+    with pytest.raises(ValueError):
+        el.hann_pulse_velocity(0.0, distance=1.0, c=0.0, amplitude=1.0, duration=1.0)
+
+
+@pytest.mark.requirements("REQ-QA-003")
 def test_half_sine_pulse_energy_is_the_integral_of_the_power():
     from scipy.integrate import quad
     rho, c, width, amplitude, duration = 2500.0, 2190.0, 1.0, 0.01, 0.01

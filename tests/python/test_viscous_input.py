@@ -73,7 +73,9 @@ def test_an_s_wave_enters_through_the_shear_impedance_and_doubles_at_the_free_to
     # the error to about 1 % of the amplitude (measured 0.57 %); the P impedance rho c_p in place
     # of rho c_s would give c_p / c_s = 1.73 times the amplitude.
     assert np.max(np.abs(v[late] - expected)) < 0.02 * 0.02
-    assert t[0] == 0.0 and np.max(np.abs(v[t < 20.0 / C_S - 0.001])) < 1e-6  # nothing before the wave arrives
+    # Nothing before the wave arrives, but for the explicit scheme's dispersive precursor, which
+    # runs ahead of the front: 1e-4 of the amplitude 1 ms (5 zones) ahead, below 1e-8 2 ms ahead.
+    assert t[0] == 0.0 and np.max(np.abs(v[t < 20.0 / C_S - 0.002])) < 1e-6
 
 
 @pytest.mark.requirements("REQ-BOUNDARY-002", "REQ-QA-007")
