@@ -647,3 +647,56 @@ def test_column_mode_and_its_rayleigh_decrement():
     assert d == pytest.approx(2 * math.pi * xi / math.sqrt(1 - xi * xi), rel=1e-14, abs=0)
     with pytest.raises(ValueError):
         el.column_rayleigh_log_decrement(E=10e9, nu=0.25, rho=2500.0, height=10.0, alpha=0.0, beta=1.0)
+
+
+def crossed_cell_centre_stiffness_by_assembly(*, E, nu, side):
+    """The centre gridpoint's 2 x 2 block of the crossed cell's stiffness, assembled from the four
+    constant-strain triangles' A B^T D B with B built from the vertex coordinates (independent of
+    the closed form's per-triangle reasoning)."""
+    lam = E * nu / ((1 + nu) * (1 - 2 * nu))
+    G = E / (2 * (1 + nu))
+    D = np.array([[lam + 2 * G, lam, 0.0], [lam, lam + 2 * G, 0.0], [0.0, 0.0, G]])
+    h = side / 2.0
+    corners = [(-h, -h), (h, -h), (h, h), (-h, h)]
+    block = np.zeros((2, 2))
+    for k in range(4):
+        pts = np.array([corners[k], corners[(k + 1) % 4], (0.0, 0.0)])
+        x, y = pts[:, 0], pts[:, 1]
+        area = 0.5 * ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]))
+        # Gradient of the centre's (third vertex's) shape function.
+        bx, by = (y[0] - y[1]) / (2 * area), (x[1] - x[0]) / (2 * area)
+        B = np.array([[bx, 0.0], [0.0, by], [by, bx]])
+        block += area * B.T @ D @ B
+    return block
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-ZONE-018")
+def test_crossed_cell_centre_mode_and_its_damped_critical_step():
+    kw = dict(E=10e9, nu=0.25, rho=2500.0, side=1.0)
+    # nu = 0.25: G = 4e9, K = 6.667e9, M = 12e9; w^2 = 6 (12e9 + 4e9) / 2500 = 3.84e7.
+    assert el.crossed_cell_centre_frequency(**kw) == pytest.approx(math.sqrt(3.84e7), rel=1e-14, abs=0)
+    # dt_z = s / (4 c_p), c_p = sqrt(12e9 / 2500) = sqrt(4.8e6).
+    assert el.crossed_grid_zone_step(**kw) == pytest.approx(1.0 / (4.0 * math.sqrt(4.8e6)), rel=1e-14, abs=0)
+    # Against the assembled triangles and the lumped mass rho s^2 / 3, at two Poisson's ratios and
+    # another cell size: the block is isotropic and its eigenvalue over the mass is w^2.
+    for nu, side in ((0.25, 1.0), (0.0, 0.5), (0.45, 2.0)):
+        block = crossed_cell_centre_stiffness_by_assembly(E=10e9, nu=nu, side=side)
+        assert block[0, 1] == pytest.approx(0.0, abs=1e-6 * block[0, 0])
+        assert block[0, 0] == pytest.approx(block[1, 1], rel=1e-12, abs=0)
+        w2 = np.linalg.eigvalsh(block).max() / (2500.0 * side * side / 3.0)
+        w = el.crossed_cell_centre_frequency(E=10e9, nu=nu, rho=2500.0, side=side)
+        assert w * w == pytest.approx(w2, rel=1e-12, abs=0)
+    # The damped critical step: xi = beta w / 2; beta = 1.5 / w gives xi = 0.75 and the factor 0.5.
+    w = el.crossed_cell_centre_frequency(**kw)
+    assert el.crossed_cell_damped_critical_step(beta=1.5 / w, **kw) == pytest.approx(1.0 / w, rel=1e-14, abs=0)
+    assert el.crossed_cell_damped_critical_step(beta=0.0, fraction=0.95, **kw) == \
+        pytest.approx(1.9 / w, rel=1e-14, abs=0)
+    # The solver's factor from w = 2 / dt_z = 8 c_p / s: xi_z = beta 4 c_p / s.
+    xi_z = 2.4e-4 * 4.0 * math.sqrt(4.8e6)
+    assert el.crossed_grid_solver_step_factor(beta=2.4e-4, **kw) == \
+        pytest.approx(math.sqrt(1.0 + xi_z * xi_z) - xi_z, rel=1e-14, abs=0)
+    # The zone fraction puts the solver's step at the fraction asked of the critical step.
+    zf = el.crossed_cell_zone_fraction_at(beta=2.4e-4, fraction=0.95, **kw)
+    solver_step = zf * el.crossed_grid_zone_step(**kw) * el.crossed_grid_solver_step_factor(beta=2.4e-4, **kw)
+    assert solver_step == pytest.approx(0.95 * el.crossed_cell_damped_critical_step(beta=2.4e-4, **kw),
+                                        rel=1e-14, abs=0)

@@ -439,6 +439,50 @@ def test_rayleigh_damping_closed_forms():
         rb.rayleigh_log_decrement(alpha=1e4, beta=0.0, mass=2500.0, kn=1e8, contact_length=1.0)
 
 
+def damped_recurrence_loop(n_steps, *, w_dt, xi, v0=1.0):
+    """The solver's update with the viscous force on the lagged velocity, stepped literally
+    (w = 1, dt = w_dt, beta = 2 xi): v += -dt (x + beta v); x += dt v."""
+    dt, beta = w_dt, 2.0 * xi
+    x, v, out = 0.0, v0, []
+    for _ in range(n_steps):
+        v += -dt * (x + beta * v)
+        x += dt * v
+        out.append(x)
+    return np.array(out)
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-MOTION-008")
+def test_stiffness_damped_critical_step_and_growth_per_step():
+    # w = 200 rad/s, beta = 7.5e-3 s: xi = 0.75, sqrt(1 + 0.5625) - 0.75 = 1.25 - 0.75 = 0.5, so
+    # dt_c = (2 / 200) 0.5 = 5e-3 s; at fraction 0.95, 4.75e-3 s.
+    assert rb.stiffness_damped_critical_step(beta=7.5e-3, **SPRING) == pytest.approx(5e-3, rel=1e-14, abs=0)
+    assert rb.stiffness_damped_critical_step(beta=7.5e-3, fraction=0.95, **SPRING) == \
+        pytest.approx(4.75e-3, rel=1e-14, abs=0)
+    # beta = 0: the undamped 2 / w.
+    assert rb.stiffness_damped_critical_step(beta=0.0, **SPRING) == pytest.approx(0.01, rel=1e-14, abs=0)
+    # Undamped, W = 2.5: lambda^2 + 4.25 lambda + 1 = 0, roots -0.25 and -4.
+    assert rb.stiffness_damped_growth_per_step(w_dt=2.5, xi=0.0) == pytest.approx(4.0, rel=1e-14, abs=0)
+    # xi = 0.75, W = 1.05: lambda^2 + 0.6775 lambda - 0.575 = 0, disc = 0.45900625 + 2.3 = 2.75900625,
+    # |lambda| = (0.6775 + 1.6610257...) / 2 = 1.16926...
+    assert rb.stiffness_damped_growth_per_step(w_dt=1.05, xi=0.75) == \
+        pytest.approx((0.6775 + math.sqrt(2.75900625)) / 2.0, rel=1e-14, abs=0)
+    # Complex pair: xi = 0.1, W = 0.5: c = 1 - 0.1 = 0.9, |lambda| = sqrt(0.9).
+    assert rb.stiffness_damped_growth_per_step(w_dt=0.5, xi=0.1) == pytest.approx(math.sqrt(0.9), rel=1e-14, abs=0)
+    # The critical step is where the growth passes 1, for several xi.
+    for xi in (0.05, 0.75, 3.0):
+        w_dt_critical = 2.0 * (math.sqrt(1.0 + xi * xi) - xi)
+        assert rb.stiffness_damped_growth_per_step(w_dt=w_dt_critical, xi=xi) == pytest.approx(1.0, rel=1e-12, abs=0)
+        assert rb.stiffness_damped_growth_per_step(w_dt=0.99 * w_dt_critical, xi=xi) < 1.0
+        assert rb.stiffness_damped_growth_per_step(w_dt=1.01 * w_dt_critical, xi=xi) > 1.0
+    # The literal loop grows or decays at that rate: over 200 steps, the late amplitude ratio.
+    for w_dt, xi in ((0.95, 0.75), (1.05, 0.75)):
+        x = np.abs(damped_recurrence_loop(400, w_dt=w_dt, xi=xi))
+        measured = (x[399] / x[199]) ** (1.0 / 200.0)
+        assert measured == pytest.approx(rb.stiffness_damped_growth_per_step(w_dt=w_dt, xi=xi), rel=1e-9, abs=0)
+    with pytest.raises(ValueError):
+        rb.stiffness_damped_growth_per_step(w_dt=-1.0, xi=0.5)
+
+
 @pytest.mark.requirements("REQ-QA-003", "REQ-MOTION-010")
 def test_newmark_sliding_block_known_values_and_consistency():
     kw = dict(g=10.0, phi_deg=30.0, base_acceleration=10.0, pulse_start=0.05, pulse_duration=0.1)

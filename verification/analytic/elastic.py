@@ -488,3 +488,66 @@ def column_rayleigh_log_decrement(*, E, nu, rho, height, alpha, beta):
     if not 0.0 <= xi < 1.0:
         raise ValueError(f"damping ratio {xi}: the decrement needs 0 <= xi < 1 (underdamped)")
     return 2.0 * math.pi * xi / math.sqrt(1.0 - xi * xi)
+
+
+# ---------------------------------------------------------------- one crossed cell: its stiffest mode and step
+
+
+def crossed_cell_centre_frequency(*, E, nu, rho, side):
+    """Angular frequency of the centre gridpoint of one crossed square cell of side s whose four
+    corners are held (or driven together): w = sqrt(6 (M + G) / rho) / s, M = K + 4G/3.
+
+    The cell's four constant-strain triangles each join the centre to one side. In the bottom
+    one the centre's shape function is (y + s/2) / (s/2), gradient (0, 2/s), so its block of the
+    triangle's stiffness A B^T D B (A = s^2 / 4, plane-strain D with M on the diagonal and G for
+    shear) is diag(G, M) (2/s)^2 A = diag(G, M); the top one likewise, the left and right ones
+    diag(M, G). The centre's stiffness is 2 (M + G) in x and y, uncoupled, and its lumped mass a
+    third of each triangle's, rho s^2 / 3. With the corners held it is the only free gridpoint,
+    so this is the system's highest (and only) frequency, in x and in y.
+    """
+    G = E / (2.0 * (1.0 + nu))
+    M = constrained_modulus(E=E, nu=nu)
+    if not (rho > 0.0 and side > 0.0):
+        raise ValueError("rho and side must be positive")
+    return math.sqrt(6.0 * (M + G) / rho) / side
+
+
+def crossed_grid_zone_step(*, E, nu, rho, side):
+    """The solver's zone step estimate for a crossed grid of square cells of side s,
+    dt_z = 2 min sqrt(m_i / k_i) = s / (4 c_p) (1.3-25 to 1.3-27): each triangle has b_max = s,
+    h_min = 2A / b_max = s / 2, so it adds (8/3) M b_max / h_min = 16 M / 3 to the stiffness of
+    each of its gridpoints and rho s^2 / 12 to their mass; every gridpoint has m_i / k_i =
+    rho s^2 / (64 M), whatever its number of triangles (docs/models/deformable-blocks.md)."""
+    return side / (4.0 * constrained_wave_speed(E=E, nu=nu, rho=rho))
+
+
+def _stiffness_damped_factor(xi):
+    # Belytschko's reduction of the critical step for damping ratio xi = beta w / 2.
+    return math.sqrt(1.0 + xi * xi) - xi
+
+
+def crossed_cell_damped_critical_step(*, E, nu, rho, side, beta, fraction=1.0):
+    """Critical step of the crossed cell's centre gridpoint under stiffness-proportional damping
+    beta: (2 / w)(sqrt(1 + xi^2) - xi), xi = beta w / 2, w = crossed_cell_centre_frequency
+    (Belytschko, Liu and Moran, Nonlinear Finite Elements, 6.2, for a viscous stress on the
+    strain rate of the half step just ended, as the zones take it); times `fraction`."""
+    w = crossed_cell_centre_frequency(E=E, nu=nu, rho=rho, side=side)
+    return fraction * 2.0 / w * _stiffness_damped_factor(0.5 * beta * w)
+
+
+def crossed_grid_solver_step_factor(*, E, nu, rho, side, beta):
+    """The factor by which the solver shortens the zone step for stiffness damping on a crossed
+    grid of square cells: sqrt(1 + xi^2) - xi with xi = beta w / 2 and w = 2 / dt_z, the bound on
+    the zones' highest frequency that the estimate dt_z = crossed_grid_zone_step gives
+    (docs/models/deformable-blocks.md); for one cell w is 2 sqrt(2) times the true one when
+    nu = 0.25, so the factor is smaller than the mode needs."""
+    return _stiffness_damped_factor(beta / crossed_grid_zone_step(E=E, nu=nu, rho=rho, side=side))
+
+
+def crossed_cell_zone_fraction_at(*, E, nu, rho, side, beta, fraction):
+    """The solver.zone_fraction at which the solver's step, zone_fraction dt_z times
+    crossed_grid_solver_step_factor, is `fraction` of crossed_cell_damped_critical_step."""
+    dt_z = crossed_grid_zone_step(E=E, nu=nu, rho=rho, side=side)
+    factor = crossed_grid_solver_step_factor(E=E, nu=nu, rho=rho, side=side, beta=beta)
+    critical = crossed_cell_damped_critical_step(E=E, nu=nu, rho=rho, side=side, beta=beta, fraction=fraction)
+    return critical / (dt_z * factor)

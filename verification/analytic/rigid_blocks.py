@@ -225,6 +225,45 @@ def stiffness_damping_step_factor(*, beta, mass, kn, contact_length):
     return math.sqrt(1.0 + xi * xi) - xi
 
 
+def stiffness_damped_critical_step(*, beta, mass, kn, contact_length, fraction=1.0):
+    """Critical step of central differences for the block's mode on its joint under
+    stiffness-proportional damping beta: dt_c = (2 / w) (sqrt(1 + xi^2) - xi), xi = beta w / 2,
+    w = sqrt(kn L / m); times `fraction` (the step of a run set to that fraction of it).
+
+    The solver's viscous force acts on the velocity of the half step just ended (the contact
+    stage takes the displacement increment of the last motion stage), so, per unit mass,
+
+        v_{n+1/2} = v_{n-1/2} - dt w^2 (x_n + beta v_{n-1/2}),   x_{n+1} = x_n + dt v_{n+1/2}.
+
+    Eliminating v, with W = w dt: x_{n+1} - (2 - W^2 - 2 xi W) x_n + (1 - 2 xi W) x_{n-1} = 0. Its
+    root lambda = -1 appears when 4 - W^2 - 4 xi W = 0, i.e. W = 2 (sqrt(1 + xi^2) - xi)
+    (Belytschko, Liu and Moran, Nonlinear Finite Elements, 6.2; the time-step note after
+    NUREG/CR-5429 1.3-22); see stiffness_damped_growth_per_step for the roots on either side.
+    """
+    w = oscillator_frequency(mass=mass, kn=kn, contact_length=contact_length)
+    return fraction * 2.0 / w * stiffness_damping_step_factor(beta=beta, mass=mass, kn=kn, contact_length=contact_length)
+
+
+def stiffness_damped_growth_per_step(*, w_dt, xi):
+    """Largest modulus of the roots of the damped recurrence of stiffness_damped_critical_step,
+
+        lambda^2 - (2 - W^2 - 2 xi W) lambda + (1 - 2 xi W) = 0,   W = w dt,  xi = beta w / 2:
+
+    the factor by which the amplitude of the mode's worst solution changes per step (below 1:
+    stable; above 1: it grows, its energy by the square). At xi = 0 this is the undamped
+    central-difference recurrence (1 for W <= 2).
+    """
+    if w_dt < 0.0 or xi < 0.0:
+        raise ValueError(f"w dt = {w_dt}, xi = {xi}: both must be >= 0")
+    b = 2.0 - w_dt * w_dt - 2.0 * xi * w_dt
+    c = 1.0 - 2.0 * xi * w_dt
+    disc = b * b - 4.0 * c
+    if disc < 0.0:
+        return math.sqrt(c)  # complex pair: |lambda|^2 = c
+    root = math.sqrt(disc)
+    return max(abs(0.5 * (b + root)), abs(0.5 * (b - root)))
+
+
 # ---------------------------------------------------------------- the central-difference scheme itself
 
 
