@@ -31,14 +31,14 @@ so kappa has a closed form. Central differences in time turn the second time der
 degree of freedom into -Omega^2 with Omega = (2 / dt) sin(w dt / 2) (the harmonic exp(i w n dt) in
 u_n+1 - 2 u_n + u_n-1 = dt^2 a_n), so the fully discrete relation is the one above with that Omega.
 
-Static check: Omega = 0 gives m_c 0 = -(2 K1 + 4 K2) sin^2(kappa / 2) + 0 only for kappa = 0, and the
-stiffness of the chain for long waves is (2 K1 + 4 K2) sin^2(kappa/2) = 4 (G / h) sin^2(kappa/2),
-the shear spring G / h of a layer. The brief "a layer of triangles is a 1D shear spring G / h with
-the lumped mass rho h per row", sin(w dt / 2) = (c dt / h) sin(k h / 2) (lumped_chain_wavenumber),
-leaves out the centre node, which carries a third of the mass between the rows: at long waves and
-w -> 0 the crossed relation is rho h (1 - sin^2(kappa/2) / 3) Omega^2 = 4 (G / h) sin^2(kappa/2),
-a mass matrix between the lumped and the consistent one, whose spatial error is fourth order.
-The side triangles' stiffness K3 (finite w) and the time step bring it back to second order.
+Long waves: with Omega -> 0 the centre follows the corners' mean and the chain's stiffness is
+(2 K1 + 4 K2) sin^2(kappa/2) = 4 (G / h) sin^2(kappa/2), the shear spring G / h of a layer. The
+chain of such springs with the lumped mass rho h per row, sin(w dt / 2) = (c dt / h) sin(k h / 2)
+(lumped_chain_wavenumber), is not this scheme's relation: it leaves out the centre node, which
+carries a third of the mass between the rows. For thin cells (K3 -> infinity) the crossed
+relation becomes rho h (1 - sin^2(kappa/2) / 3) Omega^2 = 4 (G / h) sin^2(kappa/2), a mass
+between the lumped and the consistent one whose spatial error is fourth order in kappa; the side
+triangles' finite stiffness K3 and the time step bring it back to second order.
 """
 import math
 
