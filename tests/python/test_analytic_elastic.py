@@ -550,6 +550,19 @@ def test_s_wave_sine_velocity():
     assert v == pytest.approx([0.0, 0.01, 0.0], abs=1e-11)
 
 
+@REQ
+def test_s_wave_sine_half_step_velocity_is_the_sine_half_a_step_earlier():
+    # dt = 2 ms: at t = delay + 6 ms the half step's velocity is the one at delay + 5 ms, the crest;
+    # at delay + 0.5 ms it is the one at the arrival, zero.
+    delay = 25.0 / 1264.911064
+    v = el.s_wave_sine_half_step_velocity(np.array([delay + 0.006, delay + 0.001, delay + 0.0005]), dt=0.002,
+                                          distance=25.0, E=10e9, nu=0.25, rho=2500.0, amplitude=0.01, frequency=50.0)
+    assert v == pytest.approx([0.01, 0.0, 0.0], abs=1e-11)
+    with pytest.raises(ValueError, match="dt"):
+        el.s_wave_sine_half_step_velocity(0.1, dt=0.0, distance=25.0, E=10e9, nu=0.25, rho=2500.0, amplitude=0.01,
+                                          frequency=50.0)
+
+
 
 @pytest.mark.requirements("REQ-QA-003")
 def test_kirsch_excavation_displacement_is_kirsch_less_the_plate_before_the_hole():

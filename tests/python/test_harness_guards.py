@@ -153,6 +153,16 @@ BAD_PROBLEMS = [
      '{ constant = "one" }', r"check\[0\]\.reference\.constant", "not a number"),
     ('{ function = "rigid_blocks.resting_normal_force", params = { mass = 1.0, g = 1.0 } }',
      '{ constant = 1.0, params = { a = 1 } }', r"check\[0\]\.reference\.params", "not to a constant"),
+    ("params = { mass = 1.0, g = 1.0 } }", 'params = { mass = 1.0 }, run_params = { g = "histories.h" } }',
+     r"check\[0\]\.reference\.run_params\.g", "into run or energy"),
+    ("params = { mass = 1.0, g = 1.0 } }", 'params = { mass = 1.0, g = 1.0 }, run_params = { g = "run.dt" } }',
+     r"check\[0\]\.reference\.run_params\.g", "also given in params"),
+    ("params = { mass = 1.0, g = 1.0 } }", 'params = { mass = 1.0, g = 1.0 }, run_params = { dt = "run.dt" } }',
+     r"check\[0\]\.reference\.params", "do not fit"),
+    ("params = { mass = 1.0, g = 1.0 } }", 'params = { mass = 1.0 }, run_params = "run.dt" }',
+     r"check\[0\]\.reference\.run_params", "must be a table"),
+    ('{ function = "rigid_blocks.resting_normal_force", params = { mass = 1.0, g = 1.0 } }',
+     '{ constant = 1.0, run_params = { dt = "run.dt" } }', r"check\[0\]\.reference\.run_params", "not to a constant"),
     ('justification = "j"\n', 'justification = "j"\nvariant = "fast"\n', r"check\[0\]\.variant",
      "no \\[\\[variant\\]\\] named 'fast'"),
     ('[[check]]', '[[variant]]\nname = "a/b"\n\n[[check]]', r"variant\[0\]\.name", "names a folder"),
@@ -234,3 +244,32 @@ def test_an_expected_message_needs_a_nonzero_exit(tmp_path):
     text = VALID.replace('[[check]]', '[[variant]]\nname = "v"\nexpect_message = "x"\n\n[[check]]', 1)
     with pytest.raises(ProblemError, match=r"variant\[0\]\.expect_message"):
         load_problem(write_problem(tmp_path, text))
+
+
+@pytest.mark.requirements("REQ-QA-002")
+def test_run_params_pass_a_value_of_the_checked_run_to_the_reference(tmp_path, monkeypatch):
+    # The reference of a discrete scheme needs the step the solver chose: run_params reads it from
+    # the run the check reads, each run its own, and a run without the field cannot be judged.
+    from vdec_verify.runner import RunOutcome, judge_check
+    module = types.ModuleType("analytic.harness_run_params")
+    module.scaled = lambda t, *, dt, scale: scale * dt * np.ones_like(t)
+    monkeypatch.setitem(sys.modules, module.__name__, module)
+    text = mutated('{ function = "rigid_blocks.resting_normal_force", params = { mass = 1.0, g = 1.0 } }',
+                   '{ function = "harness_run_params.scaled", params = { scale = 2.0 }, run_params = { dt = "run.dt" } }')
+    text = text.replace('{ kind = "final", history = "h" }', '{ kind = "history", history = "h" }').replace('"scalar"', '"L2"')
+    check = load_problem(write_problem(tmp_path, text)).checks[0]
+    assert check.reference.run_params == {"dt": "run.dt"} and check.reference.params == {"scale": 2.0}
+
+    def outcome(dt):
+        results = {"run": {"dt": dt}, "histories": {"h": {"t": [0.0, 1.0], "value": [0.5, 0.5], "every": 1}}}
+        return RunOutcome("", [], tmp_path, 0, exit_code=0, results=results)
+
+    metric = judge_check(check, outcome(0.2501))              # 2 x 0.2501, within 1e-3 of the history's 0.5
+    assert metric["pass"] and metric["reference"] == pytest.approx(0.5002)
+    metric = judge_check(check, outcome(0.3))
+    assert not metric["pass"] and metric["reference"] == pytest.approx(0.6)
+    missing = outcome(0.2501)
+    del missing.results["run"]["dt"]
+    metric = judge_check(check, missing)
+    assert not metric["pass"] and "run_params" in metric["message"] and "run.dt" in metric["message"]
+    assert check.reference.params == {"scale": 2.0}           # the problem's own params are left as written

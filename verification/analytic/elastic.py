@@ -411,6 +411,26 @@ def s_wave_sine_velocity(t, *, distance, E, nu, rho, amplitude, frequency):
     return np.where(t >= delay, amplitude * np.sin(2.0 * np.pi * frequency * (t - delay)), 0.0)
 
 
+def s_wave_sine_half_step_velocity(t, *, dt, distance, E, nu, rho, amplitude, frequency):
+    """s_wave_sine_velocity at t - dt / 2: what a history of the velocity of an explicit scheme
+    holds at t, the velocity of the half step just ended, v(t - dt/2), without the scheme's other
+    errors. dt > 0 is the step of the run (a reference of the discrete scheme's sampling)."""
+    if not dt > 0.0:
+        raise ValueError(f"dt = {dt}: the step must be positive")
+    return s_wave_sine_velocity(_arr(t) - 0.5 * dt, distance=distance, E=E, nu=nu, rho=rho, amplitude=amplitude,
+                                frequency=frequency)
+
+
+def s_wave_sine_displacement(t, *, distance, E, nu, rho, amplitude, frequency):
+    """Displacement at `distance` from a boundary whose velocity is amplitude sin(2 pi f t) from
+    t = 0, carried by an S-wave without dispersion: the time integral of s_wave_sine_velocity,
+    (amplitude / w) (1 - cos(w (t - distance / c_s))) after the arrival, zero before."""
+    t = _arr(t)
+    delay = s_wave_arrival_time(distance=distance, E=E, nu=nu, rho=rho)
+    omega = 2.0 * np.pi * frequency
+    return np.where(t >= delay, amplitude / omega * (1.0 - np.cos(omega * (t - delay))), 0.0)
+
+
 
 def half_sine_pulse_velocity(t, *, distance, c, amplitude, duration):
     """Particle velocity at `distance` from where a half-sine velocity pulse of the given

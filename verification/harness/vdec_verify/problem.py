@@ -40,6 +40,10 @@ Keys of problem.toml:
     extract = { kind = "...", ... }    required; kinds and their keys: vdec_verify.extract
     reference = { function = "module.function", params = { ... }, component = N }
              or { constant = VALUE }   required; function is looked up in the `analytic` package
+                                  run_params = { dt = "run.dt" } (optional, function references): further
+                                  keyword arguments read from the results.json of the run the check
+                                  reads (a dotted path into run or energy), e.g. the time step the
+                                  solver chose, for a reference of the discrete scheme
     norm = "scalar"               required: scalar | upper_bound | equal (scalar extracts), L2 | Linf (series)
     rtol = 1e-3                   at least one of rtol, atol (>= 0), not both zero for norms scalar, L2 and
                                   Linf; not used by norm "equal"; both may be zero for upper_bound (the
@@ -90,7 +94,7 @@ import inspect
 import math
 import re
 import tomllib
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from vdec_verify.extract import KINDS
@@ -124,7 +128,7 @@ REFINEMENT_KEYS = ("expected_order", "order_tolerance", "justification", "asympt
 LEVEL_KEYS = ("name", "h", "overrides", "level")
 # Norms whose error is >= 0 and shrinks with the zone size: the ones an order can be fitted to.
 STUDY_NORMS = ("scalar", "L2", "Linf")
-REFERENCE_KEYS = ("function", "params", "component", "constant")
+REFERENCE_KEYS = ("function", "params", "component", "constant", "run_params")
 
 
 class ProblemError(Exception):
@@ -152,6 +156,7 @@ class Reference:
     params: dict
     component: int       # None: use the function's value as it is
     constant: float      # None for a function reference
+    run_params: dict = field(default_factory=dict)  # keyword -> dotted path into the run's results.json
 
 
 @dataclass(frozen=True)
@@ -371,7 +376,7 @@ def _reference(errors, table, where, series):
         errors.add(where, "needs exactly one of function (module.function with params) or constant")
         return None
     if "constant" in table:
-        for key in ("params", "component"):
+        for key in ("params", "component", "run_params"):
             if key in table:
                 errors.add(f"{where}.{key}", "applies to a function reference, not to a constant")
         if not _is_number(table["constant"]):
@@ -382,6 +387,15 @@ def _reference(errors, table, where, series):
     if not isinstance(params, dict):
         errors.add(f"{where}.params", "must be a table of keyword arguments")
         params = {}
+    run_params = table.get("run_params", {})
+    if not isinstance(run_params, dict):
+        errors.add(f"{where}.run_params", "must be a table keyword = \"run.PATH\" (a number in the run's results.json)")
+        run_params = {}
+    for key, path in run_params.items():
+        if not isinstance(path, str) or path.split(".")[0] not in ("run", "energy") or "." not in path:
+            errors.add(f"{where}.run_params.{key}", f"{path!r} is not a dotted path into run or energy, e.g. 'run.dt'")
+        if key in params:
+            errors.add(f"{where}.run_params.{key}", "is also given in params: give it in one of them")
     if component is not None and not isinstance(component, str) and (
             isinstance(component, bool) or not isinstance(component, int) or component < 0):
         errors.add(f"{where}.component", f"{component!r} is not a component index (0, 1, ...) or a field name")
@@ -406,15 +420,15 @@ def _reference(errors, table, where, series):
                 coordinates = {c: None for c in ("x", "y", "r", "theta") if c in signature.parameters}
                 if not coordinates:
                     raise TypeError("a field reference takes coordinates x, y, r or theta")
-                signature.bind(**coordinates, **params)
+                signature.bind(**coordinates, **params, **dict.fromkeys(run_params))
             elif series:
-                signature.bind(None, **params)
+                signature.bind(None, **params, **dict.fromkeys(run_params))
             else:
-                signature.bind(**params)
+                signature.bind(**params, **dict.fromkeys(run_params))
         except TypeError as e:
             form = {"field": "f(x=..., y=..., r=..., theta=..., **params)"}.get(series, "f(x, **params)" if series else "f(**params)")
             errors.add(f"{where}.params", f"do not fit {ANALYTIC_PACKAGE}.{name}{signature} called as {form}: {e}")
-    return Reference(name, dict(params), component, None)
+    return Reference(name, dict(params), component, None, dict(run_params))
 
 
 def _tolerance(errors, check, where, norm):

@@ -18,7 +18,7 @@ import sys
 import time
 import tomllib
 from concurrent.futures import ThreadPoolExecutor, as_completed
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from vdec_verify.convergence import convergence_study
@@ -260,7 +260,18 @@ def judge_check(check, outcome, outcomes=None):
         metric["message"] = f"cannot extract: {e}"
         return metric
     function = find_reference_function(check.reference.function_name) if check.reference.function_name else None
-    reference = evaluate_reference(check.reference, numerical, function)
+    reference_spec = check.reference
+    if reference_spec.run_params:
+        # Values of this run that a reference of the discrete scheme needs, such as the step the
+        # solver chose: read like run_meta, so a missing field is an extraction failure.
+        try:
+            from_run = {key: extract({"kind": "run_meta", "path": path}, outcome.results, outcome.exit_code, runs)
+                        for key, path in reference_spec.run_params.items()}
+        except ExtractError as e:
+            metric["message"] = f"cannot extract the reference's run_params: {e}"
+            return metric
+        reference_spec = replace(reference_spec, params={**reference_spec.params, **from_run})
+    reference = evaluate_reference(reference_spec, numerical, function)
     comparison = compare(check.norm, numerical, reference, check.rtol, check.atol)
     metric.update(error=comparison.error, tolerance=comparison.tolerance, numerical=comparison.numerical,
                   reference=comparison.reference, **{"pass": comparison.passed})
