@@ -22,9 +22,13 @@ import numpy as np
 
 
 def _finite(name, value):
-    if not (isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)):
+    try:
+        number = float(value) if not isinstance(value, (bool, str)) else math.nan
+    except (TypeError, ValueError):
+        number = math.nan
+    if not math.isfinite(number):
         raise ValueError(f"{name} = {value!r}: must be a finite number")
-    return float(value)
+    return number
 
 
 def _positive(name, value):
@@ -96,7 +100,7 @@ def viscous_boundary_reflection(*, angle_deg, nu, wave="P", a=1.0, b=1.0):
     (sin theta, -cos theta); horizontal slowness p = sin(theta) / c_incident (Snell). It reflects into
     a P wave along (sin theta_p, cos theta_p), sin theta_p = p alpha, and an SV wave along
     (sin theta_s, cos theta_s), sin theta_s = p beta. Polarisations (Aki & Richards, Quantitative
-    Seismology, 2nd ed. 2002, sec. 5.2): a P wave moves along its propagation direction; an SV wave
+    Seismology, 2nd ed. 2002, ch. 5): a P wave moves along its propagation direction; an SV wave
     moves at right angles to it with its component along the boundary positive: (cos theta_s,
     sin theta_s) for an SV wave coming towards the boundary, (cos theta_s, -sin theta_s) for one
     going away. With these, a = b = 0 gives Aki & Richards' free-surface coefficients (ch. 5), complex
@@ -148,7 +152,7 @@ def viscous_boundary_reflection(*, angle_deg, nu, wave="P", a=1.0, b=1.0):
         energy_absorbed                   fraction absorbed by the dashpots (from the boundary velocity)
         angle_p_deg, angle_s_deg          reflection angles from the normal (nan: evanescent)
     """
-    theta = math.radians(_finite("angle_deg", angle_deg))
+    angle_deg = _finite("angle_deg", angle_deg)
     if not 0.0 <= angle_deg < 90.0:
         raise ValueError(f"angle_deg = {angle_deg}: the angle from the boundary's normal must lie in [0, 90)")
     a, b = _finite("a", a), _finite("b", b)
@@ -156,6 +160,7 @@ def viscous_boundary_reflection(*, angle_deg, nu, wave="P", a=1.0, b=1.0):
         raise ValueError(f"a = {a}, b = {b}: dashpot factors must be >= 0 (a negative one does work on the wave)")
     if wave not in ("P", "SV"):
         raise ValueError(f"wave = {wave!r}: must be \"P\" or \"SV\"")
+    theta = math.radians(angle_deg)
     alpha, beta = speed_ratio(nu=nu), 1.0  # units of beta and rho
     c_inc = alpha if wave == "P" else beta
     p = math.sin(theta) / c_inc
@@ -280,9 +285,10 @@ def layer_surface_velocity(t, *, H, rho1, c1, rho2, c2, input):
         R = (alpha_z - 1) / (alpha_z + 1),
 
     the sum over the n with t - (2n + 1) H / c1 >= 0. "input" is v_in(t), the particle velocity of the
-    INCIDENT (upgoing) wave at the interface z = H, the wave that would be there without the layer (a
-    viscous boundary's input_velocity, if that boundary lies at the interface; at a depth D below it in
-    half-space material, v_in(t) is that boundary's input delayed by D / c2). The incident wave starts
+    INCIDENT (upgoing) wave at the interface z = H, the wave that would be there without the layer. In a
+    vdec model the half-space is a block of its material under the layer on a viscous base (whose
+    dashpots take that block's impedance rho2 c2) carrying input_velocity u(t) at a depth D below the
+    interface: then v_in(t) = u(t - D / c2), zero before D / c2. The incident wave starts
     at t = 0: v_in is taken as 0 before, and only evaluated at times >= 0. The outcrop motion is 2 v_in.
 
     Derivation (1D S waves, impedances Z = rho c, velocity amplitudes): an upgoing wave crossing from
