@@ -115,6 +115,8 @@ def test_standard_boundary_p_wave_at_60_degrees_known_value():
     assert r["energy_reflected"] == pytest.approx((7.0 - 4.0 * SQ3) / 2.0, rel=1e-12, abs=0)
     assert r["energy_absorbed"] == pytest.approx(1.0 - (7.0 - 4.0 * SQ3) / 2.0, rel=1e-13, abs=0)
     assert (r["angle_p_deg"], r["angle_s_deg"]) == (pytest.approx(60.0, rel=1e-13, abs=0), pytest.approx(30.0, rel=1e-13, abs=0))
+    # every field is a plain float, as a verification problem's reference component must be
+    assert all(type(value) is float for value in r.values())
     # The mirror case, an SV wave at 30 degrees (reflected P at 60), works out to the same numbers.
     r = wv.viscous_boundary_reflection(angle_deg=30.0, nu=0.25, wave="SV")
     assert (r["reflected_p"], r["reflected_s"]) == (pytest.approx(R, rel=1e-13, abs=0), pytest.approx(R, rel=1e-13, abs=0))

@@ -188,6 +188,7 @@ def viscous_boundary_reflection(*, angle_deg, nu, wave="P", a=1.0, b=1.0):
     v = d_inc + r_p * d_p + r_s * d_s   # boundary velocity over i w exp(i w (t - p x))
     absorbed = (a * alpha * abs(v[1]) ** 2 + b * beta * abs(v[0]) ** 2) / incident_flux
     propagating = eta_p.imag == 0.0
+    r_p, r_s = complex(r_p), complex(r_s)
     return {
         "reflected_p": r_p.real if propagating else math.nan,
         "reflected_s": r_s.real if propagating else math.nan,
@@ -195,10 +196,10 @@ def viscous_boundary_reflection(*, angle_deg, nu, wave="P", a=1.0, b=1.0):
         "reflected_s_magnitude": abs(r_s),
         "reflected_p_phase_deg": math.degrees(math.atan2(r_p.imag, r_p.real)),
         "reflected_s_phase_deg": math.degrees(math.atan2(r_s.imag, r_s.real)),
-        "energy_p": energy_p,
-        "energy_s": energy_s,
-        "energy_reflected": energy_p + energy_s,
-        "energy_absorbed": absorbed,
+        "energy_p": float(energy_p),
+        "energy_s": float(energy_s),
+        "energy_reflected": float(energy_p + energy_s),
+        "energy_absorbed": float(absorbed),
         "angle_p_deg": math.degrees(math.asin(p * alpha)) if propagating else math.nan,
         "angle_s_deg": math.degrees(math.asin(p * beta)),
     }
