@@ -297,6 +297,23 @@ def test_layer_without_contrast_moves_at_twice_the_incident_velocity_delayed():
 
 
 @REQ
+def test_input_given_below_the_interface_arrives_later():
+    # D = 100 m of half-space (c2 = 1000 m/s) under the interface: 0.1 s later, nothing before
+    t = np.linspace(0.0, 3.0, 601)
+    sine = {"amplitude": 0.01, "frequency": 3.0, "phase": 0.4}
+    at_interface = wv.layer_surface_velocity(t, input=sine, **SOIL)
+    below = wv.layer_surface_velocity(t + 0.1, input=sine, input_depth=100.0, **SOIL)
+    np.testing.assert_allclose(below, at_interface, rtol=0, atol=1e-15)
+    # the first motion at the surface: at D / c2 + H / c1 = 0.1 + 0.125 s, the transmitted wave doubled,
+    # 2 T A sin(2 pi f s + phase) = 2 (2 / 1.15) 0.01 sin(0.4 + 6 pi 1e-4) 1e-4 s after
+    early = wv.layer_surface_velocity(np.array([0.2249, 0.2251]), input=sine, input_depth=100.0, **SOIL)
+    assert early[0] == 0.0
+    assert early[1] == pytest.approx(4.0 / 1.15 * 0.01 * math.sin(0.4 + 6.0 * math.pi * 1e-4), rel=1e-9, abs=0)
+    with pytest.raises(ValueError, match="input_depth"):
+        wv.layer_surface_velocity(t, input=sine, input_depth=-1.0, **SOIL)
+
+
+@REQ
 def test_layer_step_response_known_values():
     # alpha_z = 0.5 (rho1 c1 = 1e6, rho2 c2 = 2e6), tau = H / c1 = 0.1 s, unit step v_in = 1 for t >= 0:
     # T = 2 / 1.5 = 4/3, surface 2 T = 8/3 from tau; R = (0.5 - 1) / 1.5 = -1/3 per round trip 2 tau:

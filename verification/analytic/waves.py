@@ -277,7 +277,7 @@ def _sine_input(spec):
     return lambda s: amplitude * np.sin(2.0 * math.pi * frequency * s + phase)
 
 
-def layer_surface_velocity(t, *, H, rho1, c1, rho2, c2, input):
+def layer_surface_velocity(t, *, H, rho1, c1, rho2, c2, input, input_depth=0.0):
     """Surface velocity history of a uniform elastic layer on an elastic half-space (the set-up of
     layer_transfer_function) under a vertically incident S wave, as the finite sum of its multiple
     reflections, exact for any input:
@@ -286,11 +286,13 @@ def layer_surface_velocity(t, *, H, rho1, c1, rho2, c2, input):
         R = (alpha_z - 1) / (alpha_z + 1),
 
     the sum over the n with t - (2n + 1) H / c1 >= 0. "input" is v_in(t), the particle velocity of the
-    INCIDENT (upgoing) wave at the interface z = H, the wave that would be there without the layer. In a
-    vdec model the half-space is a block of its material under the layer on a viscous base (whose
-    dashpots take that block's impedance rho2 c2) carrying input_velocity u(t) at a depth D below the
-    interface: then v_in(t) = u(t - D / c2), zero before D / c2. The incident wave starts
-    at t = 0: v_in is taken as 0 before, and only evaluated at times >= 0. The outcrop motion is 2 v_in.
+    INCIDENT (upgoing) wave where it is given: at the interface z = H (input_depth = 0), or at
+    input_depth = D > 0 below it in the half-space, where it passes D / c2 earlier, so that the sum
+    uses v_in(t - D / c2). The second is how a vdec model carries it: the half-space is a block of its
+    material under the layer on a viscous base (whose dashpots take that block's impedance rho2 c2)
+    at depth D below the interface, with input_velocity v_in. The incident wave starts at t = 0 where
+    it is given: v_in is taken as 0 before, and only evaluated at times >= 0. The outcrop motion (at
+    the interface's time) is 2 v_in(t - D / c2).
 
     Derivation (1D S waves, impedances Z = rho c, velocity amplitudes): an upgoing wave crossing from
     the half-space into the layer is transmitted with T = 2 Z2 / (Z1 + Z2) = 2 / (1 + alpha_z); at the
@@ -306,9 +308,14 @@ def layer_surface_velocity(t, *, H, rho1, c1, rho2, c2, input):
     t: times (s), float or array. input: a callable v_in(s) taking a numpy array of times >= 0, or
     {"amplitude": A, "frequency": f, "phase": phi (default 0)}, the sine A sin(2 pi f s + phi) switched
     on at s = 0 (vdec's sine history times an input_velocity A).
+    input_depth: D >= 0 (m), see above.
     Returns the surface velocity, float for a scalar t.
     """
     tau, alpha_z = _layer_parameters(H, rho1, c1, rho2, c2)
+    depth = _finite("input_depth", input_depth)
+    if depth < 0.0:
+        raise ValueError(f"input_depth = {depth}: the depth below the interface must be >= 0")
+    delay = depth / c2
     if callable(input):
         incident = input
     elif isinstance(input, dict):
@@ -323,8 +330,8 @@ def layer_surface_velocity(t, *, H, rho1, c1, rho2, c2, input):
     total = np.zeros(times.shape)
     latest = float(np.max(times)) if times.size else 0.0
     weight, n = 1.0, 0
-    while (2 * n + 1) * tau <= latest and weight != 0.0:
-        shifted = times - (2 * n + 1) * tau
+    while delay + (2 * n + 1) * tau <= latest and weight != 0.0:
+        shifted = times - delay - (2 * n + 1) * tau
         arrived = shifted >= 0.0
         values = np.asarray(incident(np.where(arrived, shifted, 0.0)), dtype=float)
         total += weight * np.where(arrived, np.broadcast_to(values, times.shape), 0.0)
