@@ -282,10 +282,10 @@ def layer_surface_velocity(t, *, H, rho1, c1, rho2, c2, input, input_depth=0.0):
     layer_transfer_function) under a vertically incident S wave, as the finite sum of its multiple
     reflections, exact for any input:
 
-        v_surface(t) = (4 / (1 + alpha_z)) sum_{n >= 0} R^n v_in(t - (2n + 1) H / c1),
+        v_surface(t) = (4 / (1 + alpha_z)) sum_{n >= 0} R^n v_in(t - D / c2 - (2n + 1) H / c1),
         R = (alpha_z - 1) / (alpha_z + 1),
 
-    the sum over the n with t - (2n + 1) H / c1 >= 0. "input" is v_in(t), the particle velocity of the
+    the sum over the n with t - D / c2 - (2n + 1) H / c1 >= 0. "input" is v_in(t), the particle velocity of the
     INCIDENT (upgoing) wave where it is given: at the interface z = H (input_depth = 0), or at
     input_depth = D > 0 below it in the half-space, where it passes D / c2 earlier, so that the sum
     uses v_in(t - D / c2). The second is how a vdec model carries it: the half-space is a block of its
