@@ -312,6 +312,18 @@ inline double contactWeight(const JointMaterial& j, const Contact& c) {
   return j.law == JointLaw::PointContact ? 1.0 : c.length;
 }
 
+// A Gaussian pulse of a plane P or S wave in the deformable blocks at the start
+// (initial_wave.hpp places it once the step is known).
+struct InitialWave {
+  bool shear = false;
+  Vec2 direction;            // of travel, unit
+  Vec2 centre;               // of the pulse at t = 0
+  double amplitude = 0.0;    // peak particle velocity, m/s
+  double width = 0.0;        // Gaussian half-width along the direction, m
+  double frontWidth = 0.0;   // along the front, m (infinite: none)
+  int block = -1;            // -1: every deformable block
+};
+
 struct Model {
   std::vector<BlockMaterial> blockMaterials;
   std::vector<JointMaterial> jointMaterials;
@@ -326,6 +338,7 @@ struct Model {
   std::vector<ViscousEdge> viscousEdges;
   std::vector<RigidViscousEdge> rigidViscousEdges;
   std::vector<FreeFieldColumn> freeFields;  // those in force
+  std::vector<InitialWave> initialWaves;
   std::vector<TimeFunction> timeFunctions;
   // The outline edges of deformable blocks (outer boundaries and holes), each directed with the
   // block on its left: gridpoints from -> to.

@@ -228,6 +228,22 @@ void readBoundaries(TableReader& top, SceneDefinition& scene) {
     scene.boundaries.push_back(readBoundary(r));
     r.finish();
   }
+  for (auto [table, prefix] : top.tables("initial_wave")) {
+    TableReader r(*table, prefix, top.file());
+    InitialWaveDefinition d;
+    d.origin = r.origin();
+    const std::string kind = r.string("kind");
+    if (kind != "P" && kind != "S") r.fail("kind", "unknown wave '" + kind + "'; use \"P\" or \"S\"");
+    d.shear = kind == "S";
+    d.directionDegrees = r.number("direction");
+    d.centre = r.vec2("centre");
+    d.amplitude = r.number("amplitude");
+    d.width = r.positive("width");
+    d.frontWidth = r.has("front_width") ? r.positive("front_width") : INFINITY;
+    d.block = r.string("block", "");
+    r.finish();
+    scene.initialWaves.push_back(d);
+  }
   auto t = top.subtable("initial_stress");
   if (!t) return;
   InitialStressDefinition d;

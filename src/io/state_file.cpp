@@ -22,7 +22,7 @@ std::string layout() {
   std::ostringstream s;
   s << "Contact " << sizeof(Contact) << " YieldingState " << sizeof(YieldingState) << " VertexGeometry "
     << sizeof(VertexGeometry) << " LoadedEdge " << sizeof(LoadedEdge) << " DrivenVelocity " << sizeof(DrivenVelocity)
-    << " ViscousEdge " << sizeof(ViscousEdge) << " RigidViscousEdge " << sizeof(RigidViscousEdge) << " FreeFieldEdge " << sizeof(FreeFieldEdge)
+    << " ViscousEdge " << sizeof(ViscousEdge) << " RigidViscousEdge " << sizeof(RigidViscousEdge) << " FreeFieldEdge " << sizeof(FreeFieldEdge) << " InitialWave " << sizeof(InitialWave)
     << " MohrCoulombProperties " << sizeof(MohrCoulombProperties) << " EnergyLedger " << sizeof(EnergyLedger)
     << " Monitors " << sizeof(Monitors) << " MotionStepTotals " << sizeof(MotionStepTotals) << " Vec2 " << sizeof(Vec2)
     << " long " << sizeof(long long) << " double " << sizeof(double);

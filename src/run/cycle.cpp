@@ -10,6 +10,7 @@
 
 #include "boundary/boundary_conditions.hpp"
 #include "boundary/free_field.hpp"
+#include "boundary/initial_wave.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "motion/rigid_motion.hpp"
@@ -128,6 +129,8 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   for (const Phase& phase : settings_.phases)
     if (phase.changes.massDamping) checkDamping(*phase.changes.massDamping, "phase '" + phase.name + "': mass_damping");
 
+  // Waves in the model at the start, their velocities at -dt/2 where the scheme starts them.
+  if (model_.cycle == 0) placeInitialWaves(model_, dt_);
   // Driven velocities as the run starts, f(0) times the input, which the first history sample
   // shows; every step then sets them to f(t + dt/2).
   for (int b = 0; b < bl.size(); ++b)

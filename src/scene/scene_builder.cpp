@@ -365,6 +365,24 @@ void applyInitialStress(Model& m, const InitialStressDefinition& d) {
   }
 }
 
+InitialWave initialWave(const Model& m, const InitialWaveDefinition& d) {
+  if (m.zones.size() == 0) d.origin.failTable("needs deformable blocks: the wave lives in their zones and gridpoints");
+  InitialWave w;
+  w.shear = d.shear;
+  const double a = radians(d.directionDegrees);
+  w.direction = {std::cos(a), std::sin(a)};
+  w.centre = d.centre;
+  w.amplitude = d.amplitude;
+  w.width = d.width;
+  w.frontWidth = d.frontWidth;
+  if (!d.block.empty()) {
+    w.block = blockNamed(m, d.origin, "block", d.block);
+    if (!m.blocks.deformable[w.block])
+      d.origin.fail("block", "block '" + d.block + "' is rigid: an initial wave lives in deformable blocks");
+  }
+  return w;
+}
+
 void assignJoint(Model& m, const JointAssignmentDefinition& d) {
   const int a = blockNamed(m, d.origin, "blocks", d.blocks[0]), b = blockNamed(m, d.origin, "blocks", d.blocks[1]);
   const int index = jointMaterialNamed(m, d.origin, "joint", d.joint);
@@ -504,6 +522,7 @@ Scene buildScene(SceneDefinition s) {
     checkPhaseSolver(d, excavated ? *excavated : m, s.settings, plastic, velocityDriven);
   }
   if (s.initialStress) applyInitialStress(m, *s.initialStress);
+  for (const InitialWaveDefinition& d : s.initialWaves) m.initialWaves.push_back(initialWave(m, d));
   for (const JointAssignmentDefinition& d : s.jointAssignments) assignJoint(m, d);
   std::set<std::string> historyNames;
   for (const HistoryDefinition& d : s.histories) {

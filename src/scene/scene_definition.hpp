@@ -118,6 +118,19 @@ struct InitialStressDefinition {
   Origin origin;
 };
 
+// A plane P or S wave already in the model at the start: a Gaussian pulse travelling along
+// `direction`, for wave problems whose input is no boundary's (oblique incidence).
+struct InitialWaveDefinition {
+  bool shear = false;      // "S": particle motion across the direction of travel; "P": along it
+  double directionDegrees = 0.0;
+  Vec2 centre;
+  double amplitude = 0.0;  // peak particle velocity, m/s
+  double width = 0.0;      // Gaussian half-width along the direction of travel, m
+  double frontWidth = INFINITY;  // along the front, m (infinite: a plane wave without envelope)
+  std::string block;       // "": every deformable block
+  Origin origin;
+};
+
 struct JointAssignmentDefinition {
   std::array<std::string, 2> blocks;
   std::string joint;
@@ -184,6 +197,7 @@ struct SceneDefinition {
   std::vector<ExcavationDefinition> excavations;
   std::vector<BoundaryDefinition> boundaries;
   std::optional<InitialStressDefinition> initialStress;
+  std::vector<InitialWaveDefinition> initialWaves;
   std::vector<JointAssignmentDefinition> jointAssignments;
   std::vector<HistoryDefinition> histories;
   std::vector<PhaseDefinition> phases;

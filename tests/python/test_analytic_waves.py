@@ -372,3 +372,47 @@ def test_layer_rejects_bad_input():
         wv.layer_surface_velocity(1.0, input=3.0, **SOIL)
     with pytest.raises(ValueError, match="mode"):
         wv.layer_resonance_frequency(H=1.0, c1=1.0, mode=0)
+
+
+@pytest.mark.requirements("REQ-QA-003")
+def test_boundary_amplitude_ratios_at_60_degrees_are_worked_by_hand():
+    # R_P = R_S = -(2 - sqrt 3) / 2 at 60 degrees (nu = 1/4), reflected P at 60 and SV at 30
+    # degrees: along the boundary sin 60 (1 + R_P) + R_S cos 30 over sin 60 is 1 + 2 R_P = sqrt 3 - 1;
+    # normal to it the reflected parts cancel (R_P cos 60 - R_S sin 30 = 0).
+    assert wv.viscous_boundary_p_amplitude_ratio(angle_deg=60.0, nu=0.25, component="x") == \
+        pytest.approx(math.sqrt(3.0) - 1.0, rel=1e-12, abs=0)
+    assert wv.viscous_boundary_p_amplitude_ratio(angle_deg=60.0, nu=0.25, component="z") == \
+        pytest.approx(1.0, rel=1e-12, abs=0)
+    with pytest.raises(ValueError):
+        wv.viscous_boundary_p_amplitude_ratio(angle_deg=60.0, nu=0.25, component="y")
+
+
+@pytest.mark.requirements("REQ-QA-003")
+@pytest.mark.parametrize("angle", [20.0, 45.0, 60.0, 75.0])
+def test_reflected_energy_from_the_ratios_returns_the_closed_form_share(angle):
+    ratio = {k: wv.viscous_boundary_p_amplitude_ratio(angle_deg=angle, nu=0.3, component=k) for k in ("x", "z")}
+    # Peaks as a model would give them, the incident ones of any size.
+    share = wv.viscous_boundary_p_reflected_energy(boundary_x=0.7 * ratio["x"], incident_x=0.7,
+                                                      boundary_z=0.4 * ratio["z"], incident_z=0.4,
+                                                      angle_deg=angle, nu=0.3)
+    assert share == pytest.approx(wv.viscous_boundary_reflection(angle_deg=angle, nu=0.3)["energy_reflected"],
+                                  rel=1e-9, abs=0)
+    # No reflection at all (both ratios 1) is no energy.
+    assert wv.viscous_boundary_p_reflected_energy(boundary_x=1.0, incident_x=1.0, boundary_z=1.0, incident_z=1.0,
+                                                     angle_deg=angle, nu=0.3) == pytest.approx(0.0, rel=0, abs=1e-15)
+
+
+@pytest.mark.requirements("REQ-QA-003")
+def test_pulse_velocity_at_the_boundary_peaks_at_the_arrival_with_the_ratio_of_the_incident():
+    c_p, distance = 2000.0, 50.0
+    t = distance / c_p
+    for component, d in (("x", math.sin(math.radians(60.0))), ("z", -math.cos(math.radians(60.0)))):
+        v = wv.viscous_boundary_p_pulse_velocity([t, t + 2.0 / c_p], angle_deg=60.0, nu=0.25, c_p=c_p, amplitude=0.01,
+                                                    width=2.0, distance=distance, component=component)
+        ratio = wv.viscous_boundary_p_amplitude_ratio(angle_deg=60.0, nu=0.25, component=component)
+        assert v[0] == pytest.approx(0.01 * d * ratio, rel=1e-12, abs=0)
+        assert v[1] == pytest.approx(0.01 * d * ratio * math.exp(-1.0), rel=1e-12, abs=0)
+    # The half-step lag: the value recorded at t is the one of t - dt/2.
+    lagged = wv.viscous_boundary_p_pulse_velocity(t + 1e-4, angle_deg=60.0, nu=0.25, c_p=c_p, amplitude=0.01,
+                                                     width=2.0, distance=distance, component="z", dt=2e-4)
+    assert lagged == pytest.approx(-0.005, rel=1e-12, abs=0)

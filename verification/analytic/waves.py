@@ -339,3 +339,72 @@ def layer_surface_velocity(t, *, H, rho1, c1, rho2, c2, input, input_depth=0.0):
         n += 1
     total *= transmission
     return float(total) if total.ndim == 0 else total
+
+
+def viscous_boundary_p_pulse_velocity(t, *, angle_deg, nu, c_p, amplitude, width, distance, component, dt=0.0):
+    """Velocity of a point of a standard viscous boundary (a = b = 1) as a plane Gaussian P pulse
+    passes it at angle_deg from the boundary's normal, in the frame of viscous_boundary_reflection
+    (x along the boundary, z the inward normal): the incident particle velocity
+    amplitude g d, d = (sin theta, -cos theta), g = exp(-((distance - c_p t) / width)^2) (the pulse's
+    centre `distance` upstream of the point along d at t = 0), plus the reflected P and SV waves,
+    which leave the point with the same waveform (the ratios are real below any critical angle):
+
+        v = amplitude g (d + R_P (sin theta_p, cos theta_p) + R_S (cos theta_s, -sin theta_s)).
+
+    component "x" (along the boundary) or "z" (inward normal). dt > 0 evaluates at t - dt / 2: the
+    velocity a central-difference history records at t is that of the half step before."""
+    theta = math.radians(_finite("angle_deg", angle_deg))
+    reflection = viscous_boundary_reflection(angle_deg=angle_deg, nu=nu, wave="P")
+    theta_p = math.radians(reflection["angle_p_deg"])
+    theta_s = math.radians(reflection["angle_s_deg"])
+    direction = np.array([math.sin(theta), -math.cos(theta)])
+    total = (direction + reflection["reflected_p"] * np.array([math.sin(theta_p), math.cos(theta_p)])
+             + reflection["reflected_s"] * np.array([math.cos(theta_s), -math.sin(theta_s)]))
+    if component not in ("x", "z"):
+        raise ValueError(f"component = {component!r}: use 'x' or 'z'")
+    t = np.asarray(t, dtype=float) - 0.5 * _finite("dt", dt)
+    g = np.exp(-((_finite("distance", distance) - _positive("c_p", c_p) * t) / _positive("width", width)) ** 2)
+    return amplitude * g * total[0 if component == "x" else 1]
+
+
+def viscous_boundary_p_amplitude_ratio(*, angle_deg, nu, component):
+    """The boundary's velocity over the incident wave's, per component, as a plane P wave meets a
+    standard viscous boundary (a = b = 1) at angle_deg from its normal: (d + R_P e_P + R_S e_S)_k / d_k
+    (viscous_boundary_p_pulse_velocity's factor over the incident one's), k = "x" along the
+    boundary or "z" along the normal. 1 for both at normal incidence; a boundary that reflected
+    nothing would give 1 at every angle."""
+    reflection = viscous_boundary_reflection(angle_deg=angle_deg, nu=nu, wave="P")
+    theta, theta_p, theta_s = (math.radians(a) for a in (angle_deg, reflection["angle_p_deg"], reflection["angle_s_deg"]))
+    if component == "x":
+        incident = math.sin(theta)
+        reflected = reflection["reflected_p"] * math.sin(theta_p) + reflection["reflected_s"] * math.cos(theta_s)
+    elif component == "z":
+        incident = -math.cos(theta)
+        reflected = reflection["reflected_p"] * math.cos(theta_p) - reflection["reflected_s"] * math.sin(theta_s)
+    else:
+        raise ValueError(f"component = {component!r}: use 'x' or 'z'")
+    if incident == 0.0:
+        raise ValueError("the incident wave has no velocity along that component at this angle")
+    return (incident + reflected) / incident
+
+
+def viscous_boundary_p_reflected_energy(*, boundary_x, incident_x, boundary_z, incident_z, angle_deg, nu):
+    """The share of a plane P wave's energy flux that a boundary reflects, recovered from what a
+    model records at a point of the boundary: the peak velocities along the boundary (x) and the
+    normal (z) there (boundary_*) and those of the same incident wave at the same point in a model
+    without the boundary (incident_*). Their ratios give d + R_P e_P + R_S e_S component by
+    component (the polarisations of viscous_boundary_reflection, the reflected waves at the angles
+    Snell's law gives), a 2 x 2 system for R_P and R_S; the reflected share of the flux is then
+    R_P^2 + R_S^2 (c_s cos theta_s) / (c_p cos theta). Both peaks of a component are taken with
+    the sign that makes them positive (so the ratio is that of the signed amplitudes when the
+    reflection does not reverse the component). Compared with viscous_boundary_reflection's
+    energy_reflected, it tests the reflection coefficients of a model's boundary directly."""
+    if not 0.0 < _finite("angle_deg", angle_deg) < 90.0:
+        raise ValueError("angle_deg must lie in (0, 90): at normal incidence the x component carries nothing")
+    reflection = viscous_boundary_reflection(angle_deg=angle_deg, nu=nu, wave="P")
+    theta, theta_p, theta_s = (math.radians(a) for a in (angle_deg, reflection["angle_p_deg"], reflection["angle_s_deg"]))
+    d = np.array([math.sin(theta), -math.cos(theta)])
+    total = d * np.array([boundary_x / incident_x, boundary_z / incident_z])
+    basis = np.array([[math.sin(theta_p), math.cos(theta_s)], [math.cos(theta_p), -math.sin(theta_s)]])
+    r_p, r_s = np.linalg.solve(basis, total - d)
+    return float(r_p ** 2 + r_s ** 2 * (math.cos(theta_s) / (speed_ratio(nu=nu) * math.cos(theta))))
