@@ -16,24 +16,21 @@ Moduli moduliOf(const BlockMaterial& mat) {
   return {mat.bulk - 2.0 * mat.shear / 3.0, mat.bulk + 4.0 * mat.shear / 3.0, mat.shear};
 }
 
-// The column's velocity at height y: linear between its nodes, the end nodes' beyond them.
-Vec2 columnVelocity(const FreeFieldColumn& c, double y) {
-  const auto& h = c.nodeY;
-  if (y <= h.front()) return c.nodeVelocity.front();
-  if (y >= h.back()) return c.nodeVelocity.back();
-  const std::size_t j = static_cast<std::size_t>(std::upper_bound(h.begin(), h.end(), y) - h.begin()) - 1;
-  const double w = (y - h[j]) / (h[j + 1] - h[j]);
+// The column's velocity beside end k of a side edge.
+Vec2 columnVelocity(const FreeFieldColumn& c, const FreeFieldEdge& edge, int k) {
+  const int j = edge.node[k];
+  const double w = edge.weight[k];
   return (1.0 - w) * c.nodeVelocity[j] + w * c.nodeVelocity[j + 1];
 }
 
 // The column's stress on one side edge, as nodal forces consistent with linear shape functions:
-// the edge runs from height ya (gridpoint `from`) to yb, and element e contributes its traction
-// sigma_e . n over the part of the edge it spans.
+// the edge runs from height ya (gridpoint `from`) to yb, and each element it spans contributes its
+// traction sigma_e . n over the part of the edge it covers.
 void addColumnTraction(const FreeFieldColumn& c, const FreeFieldEdge& edge, double ya, double yb, Vec2 nL,
                        Gridpoints& g) {
   const double low = std::min(ya, yb), high = std::max(ya, yb);
   Vec2 toFrom, toTo;
-  for (std::size_t e = 0; e + 1 < c.nodeY.size(); ++e) {
+  for (int e = edge.firstElement; e <= edge.lastElement; ++e) {
     const double s0 = std::max(low, c.nodeY[e]), s1 = std::min(high, c.nodeY[e + 1]);
     if (s1 <= s0) continue;
     // u runs from 0 at `from` to 1 at `to`; the integrals of (1 - u) and u over the overlap.
@@ -107,7 +104,8 @@ void keepStaticReactions(const Model& m, FreeFieldColumn& c) {
 
 void stepFreeFields(Model& m, double dt, double alpha, double beta) {
   Gridpoints& g = m.gridpoints;
-  std::vector<Vec2> force;
+  // Kept from step to step, so that the running model allocates nothing here.
+  static thread_local std::vector<Vec2> force;
   for (FreeFieldColumn& c : m.freeFields) {
     // The column's stress at time t from the velocities of the half step just ended, as the
     // zones' (the model's first step has no motion behind it).
@@ -126,10 +124,11 @@ void stepFreeFields(Model& m, double dt, double alpha, double beta) {
       const double length = norm(d);
       const Vec2 t = (1.0 / length) * d, n{t.y, -t.x};
       addColumnTraction(c, edge, g.initialPosition[edge.from].y, g.initialPosition[edge.to].y, {d.y, -d.x}, g);
-      for (const int i : {edge.from, edge.to}) {
+      for (const int k : {0, 1}) {
         // Dashpots on the velocity relative to the column's: the part on the gridpoint's own
         // velocity dissipates (as a viscous boundary's), the column's part is a load.
-        const Vec2 v = g.velocity[i], vf = columnVelocity(c, g.initialPosition[i].y);
+        const int i = k == 0 ? edge.from : edge.to;
+        const Vec2 v = g.velocity[i], vf = columnVelocity(c, edge, k);
         g.dashpotForce[i] -= (0.5 * length) * (edge.normalImpedance * dot(v, n) * n + edge.shearImpedance * dot(v, t) * t);
         g.tractionForce[i] += (0.5 * length) * (edge.normalImpedance * dot(vf, n) * n + edge.shearImpedance * dot(vf, t) * t);
       }

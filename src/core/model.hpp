@@ -192,6 +192,11 @@ struct FreeFieldEdge {
   int from = -1, to = -1;        // gridpoints, counter-clockwise along the block boundary
   double normalImpedance = 0.0;  // rho C_p, Pa s/m
   double shearImpedance = 0.0;   // rho C_s
+  // Where the edge sits on the column, found once: the column elements it spans, and for each
+  // end the column node at or below it and the weight of the node above (linear interpolation).
+  int firstElement = 0, lastElement = 0;
+  std::array<int, 2> node{};
+  std::array<double, 2> weight{};
 };
 
 // A one-dimensional free-field column (1.3.6.3) beside a vertical lateral boundary: the motion of

@@ -71,6 +71,19 @@ FreeFieldColumn freeFieldColumn(const BoundaryDefinition& d, Model& m, const std
       d.origin.failTable("leaves the side uncovered between y = " + shown(c.nodeY[e]) + " and " + shown(c.nodeY[e + 1]) +
                          " m: a free-field column needs an unbroken vertical side (widen y, or split the model's side)");
   }
+  for (FreeFieldEdge& edge : c.edges) {
+    const std::array<double, 2> y{g.initialPosition[edge.from].y, g.initialPosition[edge.to].y};
+    for (int k = 0; k < 2; ++k) {
+      const auto above = std::upper_bound(c.nodeY.begin(), c.nodeY.end(), y[k] + slack);
+      const int j = std::clamp(static_cast<int>(above - c.nodeY.begin()) - 1, 0, static_cast<int>(elements) - 1);
+      edge.node[k] = j;
+      edge.weight[k] = std::clamp((y[k] - c.nodeY[j]) / (c.nodeY[j + 1] - c.nodeY[j]), 0.0, 1.0);
+    }
+    // The elements between the lower and the upper end.
+    const int low = y[0] < y[1] ? 0 : 1;
+    edge.firstElement = edge.weight[low] >= 1.0 ? edge.node[low] + 1 : edge.node[low];
+    edge.lastElement = edge.weight[1 - low] <= 0.0 ? edge.node[1 - low] - 1 : edge.node[1 - low];
+  }
   c.nodeMass.assign(c.nodeY.size(), 0.0);
   for (std::size_t e = 0; e < elements; ++e) {
     const double half = 0.5 * m.blockMaterials[c.elementMaterial[e]].density * (c.nodeY[e + 1] - c.nodeY[e]);
