@@ -1,7 +1,7 @@
 #pragma once
 // Free-field boundaries (1.3.6.3, 1.3-37 to 1.3-43): a one-dimensional column beside each vertical
 // lateral boundary, run in step with the model, coupled to the side by the column's stress and
-// dashpots on the relative velocity. docs/models/boundaries.md#free-field-boundaries.
+// dashpots on the relative velocity. docs/models/boundaries.md#derivation.
 #include "core/model.hpp"
 
 namespace vdec {

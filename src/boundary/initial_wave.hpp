@@ -1,6 +1,6 @@
 #pragma once
 // Plane P and S waves in the model at the start ([[initial_wave]]): a dynamic input that no
-// boundary gives, for waves that meet a boundary at an angle. docs/models/boundaries.md#initial-waves.
+// boundary gives, for waves that meet a boundary at an angle. docs/models/boundaries.md#derivation.
 #include "core/model.hpp"
 
 namespace vdec {
