@@ -446,14 +446,15 @@ def half_sine_pulse_velocity(t, *, distance, c, amplitude, duration):
     return np.where((local >= 0.0) & (local <= 1.0), amplitude * np.sin(np.pi * np.clip(local, 0.0, 1.0)), 0.0)
 
 
-def hann_pulse_velocity(t, *, distance, c, amplitude, duration):
+def hann_pulse_velocity(t, *, distance, c, amplitude, duration, dt=0.0):
     """As half_sine_pulse_velocity for a Hann (sine-squared) pulse: amplitude
     sin^2(pi (t - distance / c) / duration) while 0 <= t - distance / c <= duration, zero before
     and after. Its velocity and acceleration are continuous, so that a discretisation's
-    dispersion acts on a spectrum that falls as 1 / f^3, not on the kinks of a half-sine."""
+    dispersion acts on a spectrum that falls as 1 / f^3, not on the kinks of a half-sine.
+    dt > 0 evaluates it at t - dt / 2: the velocity a central-difference history records at t."""
     if not (c > 0.0 and duration > 0.0):
         raise ValueError("c and duration must be positive")
-    t = _arr(t)
+    t = _arr(t) - 0.5 * dt
     local = (t - distance / c) / duration
     inside = (local >= 0.0) & (local <= 1.0)
     return np.where(inside, amplitude * np.sin(np.pi * np.clip(local, 0.0, 1.0)) ** 2, 0.0)
