@@ -279,3 +279,179 @@ def test_a_phase_that_frees_a_driven_boundary_gives_the_energy_account_its_kinet
     energy = results["energy"]
     assert energy["kinetic"] == pytest.approx(kinetic, rel=1e-9, abs=0)
     assert energy["removed"] == pytest.approx(-kinetic, rel=1e-9, abs=0)
+
+
+# A layer 10 m thick in 1 m crossed cells on a half-space 100 times stiffer (c_p ten times the
+# layer's), through a viscous base that names it; SIDES and the [solver] keys SOLVER added.
+def layer_on_half_space(solver, sides="", stop="cycles = 1", base_input=""):
+    return f"""
+[model]
+rounding = 0.01
+[solver]
+{solver}
+[stop]
+{stop}
+[[block_material]]
+name = "layer"
+density = {RHO}
+young = {YOUNG}
+poisson = {POISSON}
+[[block_material]]
+name = "halfspace"
+density = {RHO}
+young = {100 * YOUNG}
+poisson = {POISSON}
+[[block]]
+name = "layer"
+material = "layer"
+vertices = [[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]]
+zoning = {{ nx = 10, ny = 10 }}
+[[boundary]]
+name = "base"
+block = "layer"
+y = [0.0, 0.0]
+viscous = true
+material = "halfspace"
+{base_input}
+{sides}"""
+
+
+FREE_FIELD_SIDES = """
+[[boundary]]
+name = "left"
+x = [0.0, 0.0]
+free_field = true
+material = "halfspace"
+[[boundary]]
+name = "right"
+x = [10.0, 10.0]
+free_field = true
+material = "halfspace"
+"""
+M_LAYER = constrained_modulus(YOUNG, POISSON)
+Z_LAYER = math.sqrt(RHO * M_LAYER)  # rho c_p, the larger of the two impedances
+Z_HALF_SPACE = math.sqrt(RHO * constrained_modulus(100 * YOUNG, POISSON))
+
+
+def dashpot_step(mass, stiffness, dashpot):
+    """The largest stable step of a mass on a spring with a dashpot on the lagged velocity:
+    (w dt)^2 + 2 c dt / m < 4, w^2 = k / m."""
+    return 4.0 * mass / (dashpot + math.sqrt(dashpot ** 2 + 4.0 * stiffness * mass))
+
+
+def layer_step_limits(zone_fraction, free_field):
+    """The step limits of layer_on_half_space, formed here from the cells: each of the four
+    triangles of a square cell of side h has area h^2 / 4, longest side h and least height h / 2,
+    and gives each of its corners the mass rho h^2 / 12 and the stiffness (8/3) M h / (h / 2) of
+    1.3-27; a gridpoint has them from 2 (a corner), 4 (a side) or 8 triangles."""
+    h = 1.0
+    mass, stiffness = RHO * h * h / 12.0, 16.0 / 3.0 * M_LAYER
+    zones = zone_fraction * 2.0 * math.sqrt(mass / stiffness)
+    side = Z_LAYER if free_field else 0.0  # the side dashpots take the layer's impedance
+    # (triangles, dashpot): base gridpoints, the base corners, the side gridpoints, the top corners.
+    gridpoints = [(4, h * Z_HALF_SPACE), (2, 0.5 * h * (Z_HALF_SPACE + side))]
+    if free_field:
+        gridpoints += [(4, h * side), (2, 0.5 * h * side)]
+    limits = {"deformable-blocks": zones,
+              "boundaries": zone_fraction * min(dashpot_step(n * mass, n * stiffness, c) for n, c in gridpoints)}
+    if free_field:
+        # The column: nodes every h, masses rho h (rho h / 2 at its ends), stiffness 2 M / h per
+        # element at each node, the half-space's dashpot at its base node.
+        limits["free-field"] = min(dashpot_step(RHO * h / 2.0, 2.0 * M_LAYER / h, Z_HALF_SPACE),
+                                   dashpot_step(RHO * h, 4.0 * M_LAYER / h, 0.0))
+    return limits
+
+
+REQ_STEP = pytest.mark.requirements("REQ-BOUNDARY-004", "REQ-RUN-006")
+
+
+@REQ_STEP
+def test_the_step_limits_are_each_components_and_the_step_the_smallest_reduced_for_local_damping(tmp_path):
+    done, results = run(tmp_path, layer_on_half_space("local_damping = 0.8\nzone_fraction = 0.9", FREE_FIELD_SIDES))
+    assert done.returncode == 0, done.stderr
+    limits = results["run"]["step_limits"]
+    expected = layer_step_limits(0.9, free_field=True)
+    assert limits == pytest.approx(expected, rel=1e-12, abs=0)
+    # Local damping divides the critical step by sqrt(1 + alpha_L).
+    assert results["run"]["dt"] == pytest.approx(min(expected.values()) / math.sqrt(1.8), rel=1e-12, abs=0)
+
+
+@REQ_STEP
+def test_the_step_under_stiffness_damping_is_the_smallest_limit_times_its_factor(tmp_path):
+    beta = 2e-5
+    done, results = run(tmp_path, layer_on_half_space(f"stiffness_damping = {beta}", FREE_FIELD_SIDES))
+    assert done.returncode == 0, done.stderr
+    expected = layer_step_limits(1.0, free_field=True)
+    assert results["run"]["step_limits"] == pytest.approx(expected, rel=1e-12, abs=0)
+    # xi = beta w / 2 of the stiffest mode, w the larger of 2 / dt_z and the column's 2 / dt.
+    xi = 0.5 * beta * max(2.0 / expected["deformable-blocks"], 2.0 / expected["free-field"])
+    factor = math.sqrt(1.0 + xi * xi) - xi
+    assert results["run"]["stiffness_damping_step_factor"] == pytest.approx(factor, rel=1e-12, abs=0)
+    assert results["run"]["dt"] == pytest.approx(min(expected.values()) * factor, rel=1e-12, abs=0)
+
+
+@REQ_STEP
+@pytest.mark.parametrize("zone_fraction, exit_code", [(0.9, 0), (1.1, 5)])
+def test_a_layer_on_a_stiff_half_space_is_stable_below_the_dashpot_limit_and_not_above(tmp_path, zone_fraction,
+                                                                                       exit_code):
+    # A P and S wave through the base, 20 Hz, for 0.05 s (1,750 steps at the limit).
+    done, results = run(tmp_path, layer_on_half_space(
+        f"zone_fraction = {zone_fraction}", stop="time = 0.05",
+        base_input='input_velocity = [0.01, 0.01]\nhistory = { kind = "sine", frequency = 20.0 }'))
+    # At a base gridpoint (m = rho h^2 / 3, k = 64 M / 3) the dashpot c = h rho c_p of the
+    # half-space is x = 3 Z_half-space / (16 Z_layer) = 1.875 times 2 sqrt(k m): c^2 is 3.5 times
+    # 4 k m, so the bound is nearer the dashpot's own c dt / m < 2 than the spring's, and
+    # 1.3-26's margin on k matters less. The bound is the zones' estimate / (x + sqrt(1 + x^2)),
+    # a quarter of it, and the step is zone_fraction times the bound.
+    limits = layer_step_limits(zone_fraction, free_field=False)
+    assert limits["boundaries"] == pytest.approx(limits["deformable-blocks"] / 4.0, rel=1e-12, abs=0)
+    assert done.returncode == exit_code, done.stderr
+    assert results["run"]["dt"] == pytest.approx(limits["boundaries"], rel=1e-12, abs=0)
+    if exit_code:
+        assert "numerical instability" in done.stderr and "lower solver.zone_fraction (now 1.1" in done.stderr
+
+
+# A rigid block 2 m x 1 m, free, its top edge viscous (its own material's impedances).
+RIGID_BLOCK = f"""
+[model]
+rounding = 0.01
+[stop]
+cycles = 1
+[[block_material]]
+name = "rock"
+density = {RHO}
+young = {YOUNG}
+poisson = {POISSON}
+[[joint_material]]
+name = "j"
+kn = 1e10
+ks = 1e10
+friction = 30.0
+[[block]]
+name = "stone"
+material = "rock"
+vertices = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]
+[[boundary]]
+block = "stone"
+y = [1.0, 1.0]
+viscous = true
+"""
+
+
+@REQ_STEP
+def test_a_rigid_blocks_viscous_edge_limits_the_step_as_a_dashpot_on_its_translation_and_rotation(tmp_path):
+    done, results = run(tmp_path, RIGID_BLOCK)
+    assert done.returncode == 0, done.stderr
+    frac, kn = 0.1, 1e10
+    mass, radius = RHO * 2.0, math.hypot(1.0, 0.5)
+    inertia = mass * (2.0 ** 2 + 1.0 ** 2) / 12.0
+    # The edge from (2, 1) to (0, 1), at ra = (1, 0.5), rb = (-1, 0.5) from the centroid: its
+    # dashpots resist translation with Z l and rotation with Z l (ra.ra + ra.rb + rb.rb) / 3.
+    translation = Z_LAYER * 2.0
+    rotation = Z_LAYER * 2.0 * (1.25 - 0.75 + 1.25) / 3.0
+    stiffness = kn * 2.0 * radius  # joint springs along the block, l_typ at most its diameter
+    expected = {"rigid-block-motion": frac * 2.0 * math.sqrt(mass / (kn * 2.0)),  # 1.3-28, longest edge 2 m
+                "boundaries": frac * min(dashpot_step(mass, stiffness, translation),
+                                         dashpot_step(inertia, stiffness * radius ** 2, rotation))}
+    assert results["run"]["step_limits"] == pytest.approx(expected, rel=1e-12, abs=0)
+    assert results["run"]["dt"] == pytest.approx(min(expected.values()), rel=1e-12, abs=0)
