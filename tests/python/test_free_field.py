@@ -138,7 +138,7 @@ BAD = {
 }
 
 
-@pytest.mark.requirements("REQ-BOUNDARY-003", "REQ-BOUNDARY-004", "REQ-BOUNDARY-002", "REQ-QA-007")
+@pytest.mark.requirements("REQ-BOUNDARY-002", "REQ-BOUNDARY-003", "REQ-BOUNDARY-004", "REQ-IO-002")
 @pytest.mark.parametrize("case", sorted(BAD))
 def test_bad_free_field_material_and_rigid_viscous_input_is_a_scene_error_naming_file_line_and_key(tmp_path, case):
     tables, at, key, message = BAD[case]

@@ -216,3 +216,118 @@ def test_a_restart_applies_the_boundary_conditions_a_saved_phase_added(tmp_path)
     assert done.returncode == 0, done.stderr
     assert rest["run"]["stages"] == whole["run"]["stages"]
     assert computed(rest) == computed(whole)
+
+
+# A layer relaxed under gravity on rollers, then shaken by an S wave through a viscous base with
+# free-field sides, a rigid cap on it whose top edge is viscous: the columns' motion, stresses and
+# kept reactions, and the rigid block's dashpots, must all come back from the state file.
+SHAKEN_LAYER = """
+[model]
+rounding = 0.01
+gravity = [0.0, -9.81]
+[solver]
+local_damping = 0.8
+[[block_material]]
+name = "rock"
+density = 2500.0
+young = 10e9
+poisson = 0.25
+[[joint_material]]
+name = "j"
+kn = 1e10
+ks = 1e10
+friction = 30.0
+[[block]]
+name = "layer"
+material = "rock"
+vertices = [[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]]
+zoning = { nx = 5, ny = 5 }
+[[block]]
+name = "cap"
+material = "rock"
+vertices = [[4.0, 10.0], [6.0, 10.0], [6.0, 11.0], [4.0, 11.0]]
+[[boundary]]
+name = "base"
+block = "layer"
+y = [0.0, 0.0]
+fix = ["x", "y"]
+[[boundary]]
+name = "left rollers"
+block = "layer"
+x = [0.0, 0.0]
+fix = ["x"]
+[[boundary]]
+name = "right rollers"
+block = "layer"
+x = [10.0, 10.0]
+fix = ["x"]
+[[history]]
+name = "cap"
+quantity = "block.velocity_x"
+block = "cap"
+every = 1
+[[history]]
+name = "side"
+quantity = "gridpoint.velocity_x"
+block = "layer"
+point = [0.0, 6.0]
+every = 1
+[[phase]]
+name = "settle"
+stop = { ratio = 1e-6, cycles = 100000 }
+[[phase]]
+name = "shake"
+stop = { time = 0.015 }
+mass_damping = 0.0
+free = ["base", "left rollers", "right rollers"]
+[[phase.boundary]]
+name = "base"
+block = "layer"
+y = [0.0, 0.0]
+viscous = true
+input_velocity = [0.01, 0.0]
+history = { kind = "sine", frequency = 50.0 }
+[[phase.boundary]]
+name = "left"
+x = [0.0, 0.0]
+free_field = true
+input_velocity = [0.01, 0.0]
+history = { kind = "sine", frequency = 50.0 }
+[[phase.boundary]]
+name = "right"
+x = [10.0, 10.0]
+free_field = true
+input_velocity = [0.01, 0.0]
+history = { kind = "sine", frequency = 50.0 }
+[[phase.boundary]]
+name = "cap top"
+block = "cap"
+y = [11.0, 11.0]
+viscous = true
+[[phase]]
+name = "more"
+stop = { time = 0.015 }
+"""
+
+
+@pytest.mark.requirements("REQ-RUN-005", "REQ-BOUNDARY-003")
+@pytest.mark.parametrize("threads", ["1", "2"])
+@pytest.mark.parametrize("saved_phase, number", [("settle", 1), ("shake", 2)])
+def test_a_restart_with_free_field_columns_and_a_rigid_viscous_edge_is_the_run_that_did_not_stop(
+        tmp_path, saved_phase, number, threads):
+    scene = tmp_path / "scene.toml"
+    scene.write_text(SHAKEN_LAYER)
+    done, whole = run(scene, tmp_path / "whole", "--threads", "1")
+    assert done.returncode == 0, done.stderr
+    assert {"free-field", "viscous-boundaries", "rigid-viscous-boundaries"} <= set(whole["run"]["stages"])
+    # The sides move with the wave: a state that lost the columns would show.
+    assert max(abs(v) for v in whole["histories"]["side"]["value"]) > 1e-3
+    done, _ = run(scene, tmp_path / "first", "--threads", threads, "--save", saved_phase)
+    assert done.returncode == 0, done.stderr
+    state = tmp_path / "first" / f"after-phase-{number}.vdecstate"
+    done, rest = run(scene, tmp_path / "rest", "--threads", threads, "--restart", str(state))
+    assert done.returncode == 0, done.stderr
+    assert rest["scene"]["restart"] == {"file": str(state), "phases_done": number}
+    assert rest["run"]["stages"] == whole["run"]["stages"]
+    assert rest["run"]["step_limits"] == whole["run"]["step_limits"]
+    assert computed(rest) == computed(whole)
