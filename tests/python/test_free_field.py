@@ -9,6 +9,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from test_restart import computed
 
 ROOT = Path(__file__).resolve().parents[2]
 VDEC = os.environ.get("VDEC_EXECUTABLE", str(ROOT / "build" / "vdec"))
@@ -21,18 +22,21 @@ def constrained_modulus(young, poisson):
     return young * (1.0 - poisson) / ((1.0 + poisson) * (1.0 - 2.0 * poisson))
 
 
-# A layer 10 m wide and 10 m thick in 2 m crossed cells on a fixed base; "loose" has no elastic
-# constants (a rigid block's material).
-LAYER = f"""
-[model]
-rounding = 0.01
-[stop]
-cycles = 2
+ROCK = f"""
 [[block_material]]
 name = "rock"
 density = {RHO}
 young = {YOUNG}
 poisson = {POISSON}
+"""
+# A layer 10 m wide and 10 m thick in 2 m crossed cells on a fixed base; "loose" has no elastic
+# constants (a rigid block's material).
+LAYER = """
+[model]
+rounding = 0.01
+[stop]
+cycles = 2
+""" + ROCK + """
 [[block_material]]
 name = "loose"
 density = 2000.0
@@ -40,7 +44,7 @@ density = 2000.0
 name = "layer"
 material = "rock"
 vertices = [[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]]
-zoning = {{ nx = 5, ny = 5 }}
+zoning = { nx = 5, ny = 5 }
 [[boundary]]
 block = "layer"
 y = [0.0, 0.0]
@@ -150,25 +154,21 @@ def test_bad_free_field_material_and_rigid_viscous_input_is_a_scene_error_naming
     assert expected in done.stderr, done.stderr
 
 
-# A layer 20 m wide and 10 m thick under gravity, 2 m crossed cells, on a fixed base with rollers
-# on its sides, relaxed to equilibrium (local damping, ratio 1e-9); then the rollers go and
-# free-field columns with no input come on, undamped.
-RELAXED_LAYER = f"""
+def rollered_layer(width, nx, ny):
+    """A layer WIDTH m wide and 10 m thick under gravity in NX x NY crossed cells, on a fixed base
+    ("base") with rollers on its sides ("left rollers", "right rollers"), local damping 0.8."""
+    return f"""
 [model]
 rounding = 0.01
 gravity = [0.0, -9.81]
 [solver]
 local_damping = 0.8
-[[block_material]]
-name = "rock"
-density = {RHO}
-young = {YOUNG}
-poisson = {POISSON}
+{ROCK}
 [[block]]
 name = "layer"
 material = "rock"
-vertices = [[0.0, 0.0], [20.0, 0.0], [20.0, 10.0], [0.0, 10.0]]
-zoning = {{ nx = 10, ny = 5 }}
+vertices = [[0.0, 0.0], [{width}, 0.0], [{width}, 10.0], [0.0, 10.0]]
+zoning = {{ nx = {nx}, ny = {ny} }}
 [[boundary]]
 name = "base"
 block = "layer"
@@ -182,15 +182,32 @@ fix = ["x"]
 [[boundary]]
 name = "right rollers"
 block = "layer"
-x = [20.0, 20.0]
+x = [{width}, {width}]
 fix = ["x"]
+"""
+
+
+def side_history(name, quantity, point):
+    return f"""
+[[history]]
+name = "{name}"
+quantity = "{quantity}"
+block = "layer"
+point = [{point[0]}, {point[1]}]
+every = 1
+"""
+
+
+# The layer 20 m wide in 2 m cells relaxed to equilibrium (ratio 1e-9); then the rollers go and
+# free-field columns with no input come on, undamped.
+RELAXED_LAYER = rollered_layer(20.0, 10, 5) + """
 [[phase]]
 name = "settle"
-stop = {{ ratio = 1e-9, cycles = 200000 }}
+stop = { ratio = 1e-9, cycles = 200000 }
 require_equilibrium = true
 [[phase]]
 name = "free field"
-stop = {{ time = 0.1 }}
+stop = { time = 0.1 }
 mass_damping = 0.0
 free = ["left rollers", "right rollers"]
 [[phase.boundary]]
@@ -201,14 +218,8 @@ free_field = true
 name = "right"
 x = [20.0, 20.0]
 free_field = true
-""" + "".join(f"""
-[[history]]
-name = "{side}_{y}"
-quantity = "gridpoint.velocity_x"
-block = "layer"
-point = [{x}, {y}.0]
-every = 1
-""" for side, x in (("left", 0.0), ("right", 20.0)) for y in (2, 4, 6, 8, 10))
+""" + "".join(side_history(f"{side}_{y}", "gridpoint.velocity_x", (x, y))
+                for side, x in (("left", 0.0), ("right", 20.0)) for y in (2.0, 4.0, 6.0, 8.0, 10.0))
 
 
 @pytest.mark.requirements("REQ-BOUNDARY-003", "REQ-RUN-004")
@@ -235,19 +246,15 @@ def test_a_relaxed_layer_stays_at_rest_when_a_phase_swaps_its_rollers_for_free_f
 
 # One crossed cell carried at 0.01 m/s by a named boundary for one cycle, then let go: it goes on
 # at that velocity, with kinetic energy the driver gave it and no work recorded.
-CARRIED_CELL = f"""
+CARRIED_CELL = """
 [model]
 rounding = 0.01
-[[block_material]]
-name = "rock"
-density = {RHO}
-young = {YOUNG}
-poisson = {POISSON}
+""" + ROCK + """
 [[block]]
 name = "cell"
 material = "rock"
 vertices = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
-zoning = {{ nx = 1, ny = 1 }}
+zoning = { nx = 1, ny = 1 }
 [[boundary]]
 name = "carry"
 block = "cell"
@@ -260,11 +267,11 @@ point = [0.5, 0.5]
 every = 1
 [[phase]]
 name = "carried"
-stop = {{ cycles = 1 }}
+stop = { cycles = 1 }
 [[phase]]
 name = "coasting"
 free = ["carry"]
-stop = {{ cycles = 100 }}
+stop = { cycles = 100 }
 """
 
 
@@ -412,16 +419,12 @@ def test_a_layer_on_a_stiff_half_space_is_stable_below_the_dashpot_limit_and_not
 
 
 # A rigid block 2 m x 1 m, free, its top edge viscous (its own material's impedances).
-RIGID_BLOCK = f"""
+RIGID_BLOCK = """
 [model]
 rounding = 0.01
 [stop]
 cycles = 1
-[[block_material]]
-name = "rock"
-density = {RHO}
-young = {YOUNG}
-poisson = {POISSON}
+""" + ROCK + """
 [[joint_material]]
 name = "j"
 kn = 1e10
@@ -455,3 +458,77 @@ def test_a_rigid_blocks_viscous_edge_limits_the_step_as_a_dashpot_on_its_transla
                                          dashpot_step(inertia, stiffness * radius ** 2, rotation))}
     assert results["run"]["step_limits"] == pytest.approx(expected, rel=1e-12, abs=0)
     assert results["run"]["dt"] == pytest.approx(min(expected.values()), rel=1e-12, abs=0)
+
+
+# The layer 10 m wide in 2 m cells relaxed as above, then shaken by an S wave through a viscous
+# base with free-field sides, a rigid cap on it whose top edge is viscous: the columns' motion,
+# stresses and kept reactions, and the rigid block's dashpots, must all come back from a state file.
+WAVE = 'input_velocity = [0.01, 0.0]\nhistory = { kind = "sine", frequency = 50.0 }'
+SHAKEN_LAYER = rollered_layer(10.0, 5, 5) + JOINT + f"""
+[[block]]
+name = "cap"
+material = "rock"
+vertices = [[4.0, 10.0], [6.0, 10.0], [6.0, 11.0], [4.0, 11.0]]
+[[history]]
+name = "cap"
+quantity = "block.velocity_x"
+block = "cap"
+every = 1
+{side_history("side", "gridpoint.velocity_x", (0.0, 6.0))}
+[[phase]]
+name = "settle"
+stop = {{ ratio = 1e-6, cycles = 100000 }}
+[[phase]]
+name = "shake"
+stop = {{ time = 0.015 }}
+mass_damping = 0.0
+free = ["base", "left rollers", "right rollers"]
+[[phase.boundary]]
+name = "base"
+block = "layer"
+y = [0.0, 0.0]
+viscous = true
+{WAVE}
+[[phase.boundary]]
+name = "left"
+x = [0.0, 0.0]
+free_field = true
+{WAVE}
+[[phase.boundary]]
+name = "right"
+x = [10.0, 10.0]
+free_field = true
+{WAVE}
+[[phase.boundary]]
+name = "cap top"
+block = "cap"
+y = [11.0, 11.0]
+viscous = true
+[[phase]]
+name = "more"
+stop = {{ time = 0.015 }}
+"""
+
+
+@pytest.mark.requirements("REQ-RUN-005", "REQ-BOUNDARY-003")
+@pytest.mark.parametrize("threads", ["1", "2"])
+@pytest.mark.parametrize("saved_phase, number", [("settle", 1), ("shake", 2)])
+def test_a_restart_with_free_field_columns_and_a_rigid_viscous_edge_is_the_run_that_did_not_stop(
+        tmp_path, saved_phase, number, threads):
+    (tmp_path / "whole").mkdir()
+    done, whole = run(tmp_path / "whole", SHAKEN_LAYER, "--threads", "1")
+    assert done.returncode == 0, done.stderr
+    assert {"free-field", "viscous-boundaries", "rigid-viscous-boundaries"} <= set(whole["run"]["stages"])
+    # The sides move with the wave: a state that lost the columns would show.
+    assert max(abs(v) for v in whole["histories"]["side"]["value"]) > 1e-3
+    (tmp_path / "first").mkdir()
+    done, _ = run(tmp_path / "first", SHAKEN_LAYER, "--threads", threads, "--save", saved_phase)
+    assert done.returncode == 0, done.stderr
+    state = tmp_path / "first" / "out" / f"after-phase-{number}.vdecstate"
+    (tmp_path / "rest").mkdir()
+    done, rest = run(tmp_path / "rest", SHAKEN_LAYER, "--threads", threads, "--restart", str(state))
+    assert done.returncode == 0, done.stderr
+    assert rest["scene"]["restart"] == {"file": str(state), "phases_done": number}
+    assert rest["run"]["stages"] == whole["run"]["stages"]
+    assert rest["run"]["step_limits"] == whole["run"]["step_limits"]
+    assert computed(rest) == computed(whole)
