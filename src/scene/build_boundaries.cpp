@@ -30,6 +30,21 @@ std::pair<double, double> impedances(const BlockMaterial& mat) {
   return {std::sqrt(mat.density * (mat.bulk + 4.0 * mat.shear / 3.0)), std::sqrt(mat.density * mat.shear)};
 }
 
+// The material whose impedances a viscous or free-field boundary's dashpots take: the medium
+// beyond it that the boundary names, else BLOCK_MATERIAL. A material without elastic constants has
+// no wave speeds, and would give dashpots that absorb nothing.
+int dashpotMaterial(const BoundaryDefinition& d, const Model& m, int blockMaterial) {
+  const bool named = !d.material.empty();
+  const int material = named ? blockMaterialNamed(m, d.origin, "material", d.material) : blockMaterial;
+  const BlockMaterial& mat = m.blockMaterials[material];
+  if (!mat.elastic())
+    d.origin.fail(named ? "material" : "block",
+                  "block material '" + mat.name + "' has no elastic constants, and the dashpots need its wave speeds: " +
+                      (named ? "give it young and poisson, or name an elastic material"
+                             : "give it young and poisson, or name the medium beyond the boundary with material = \"...\""));
+  return material;
+}
+
 int historyOf(const BoundaryDefinition& d, Model& m) {
   if (!d.history) return -1;
   m.timeFunctions.push_back(*d.history);
@@ -47,7 +62,8 @@ FreeFieldColumn freeFieldColumn(const BoundaryDefinition& d, Model& m, const std
     if (std::abs(b.x - a.x) > slack)
       d.origin.fail("x", "selects the edge from (" + shown(a.x) + ", " + shown(a.y) + ") to (" + shown(b.x) + ", " +
                              shown(b.y) + ") of block '" + m.blocks.name[be.block] +
-                             "', which is not vertical: a free-field column runs beside a vertical side");
+                             "', which is not vertical: a free-field column runs beside a vertical side; give x = [x0, x0] "
+                             "at that side");
     const double side = b.y < a.y ? -1.0 : 1.0;  // counter-clockwise: going down on the left side
     if (c.side != 0.0 && c.side != side)
       d.origin.fail("x", "selects edges of a left side and of a right side: give one free-field table per side");
@@ -69,7 +85,8 @@ FreeFieldColumn freeFieldColumn(const BoundaryDefinition& d, Model& m, const std
     }
     if (c.elementMaterial[e] < 0)
       d.origin.failTable("leaves the side uncovered between y = " + shown(c.nodeY[e]) + " and " + shown(c.nodeY[e + 1]) +
-                         " m: a free-field column needs an unbroken vertical side (widen y, or split the model's side)");
+                         " m: a free-field column needs an unbroken vertical side; close the gap in the model's side, or give one "
+                         "free-field table per unbroken stretch (narrow y)");
   }
   for (FreeFieldEdge& edge : c.edges) {
     const std::array<double, 2> y{g.initialPosition[edge.from].y, g.initialPosition[edge.to].y};
@@ -94,8 +111,8 @@ FreeFieldColumn freeFieldColumn(const BoundaryDefinition& d, Model& m, const std
   c.sxx.assign(elements, 0.0);
   c.syy.assign(elements, 0.0);
   c.sxy.assign(elements, 0.0);
-  const int base = d.material.empty() ? c.elementMaterial.front() : blockMaterialNamed(m, d.origin, "material", d.material);
-  std::tie(c.baseNormalImpedance, c.baseShearImpedance) = impedances(m.blockMaterials[base]);
+  std::tie(c.baseNormalImpedance, c.baseShearImpedance) =
+      impedances(m.blockMaterials[dashpotMaterial(d, m, c.elementMaterial.front())]);
   c.inputVelocity = d.inputVelocity;
   c.history = historyOf(d, m);
   return c;
@@ -106,13 +123,7 @@ FreeFieldColumn freeFieldColumn(const BoundaryDefinition& d, Model& m, const std
 BoundaryCondition rigidViscousBoundary(const BoundaryDefinition& d, Model& m, int block) {
   BoundaryCondition condition;
   condition.name = d.name;
-  const int material = d.material.empty() ? m.blocks.material[block] : blockMaterialNamed(m, d.origin, "material", d.material);
-  const BlockMaterial& mat = m.blockMaterials[material];
-  if (!mat.elastic())
-    d.origin.fail(d.material.empty() ? "block" : "material",
-                  "block material '" + mat.name + "' has no elastic constants, and the dashpots need its wave speeds: give "
-                  "it young and poisson, or name the medium beyond the boundary with material = \"...\"");
-  const auto [zn, zs] = impedances(mat);
+  const auto [zn, zs] = impedances(m.blockMaterials[dashpotMaterial(d, m, m.blocks.material[block])]);
   const int first = m.blocks.firstVertex[block], count = m.blocks.vertexCount[block];
   const double slack = 1e-9 * std::max(1.0, 2.0 * m.blocks.boundingRadius[block]);
   auto selected = [&](int v) {
@@ -128,7 +139,7 @@ BoundaryCondition rigidViscousBoundary(const BoundaryDefinition& d, Model& m, in
   }
   if (condition.rigidDashpots.empty())
     d.origin.failTable("selects no edge of rigid block '" + m.blocks.name[block] +
-                       "': dashpots act on the edges whose two end vertices are both selected");
+                       "': dashpots act on the edges whose two end vertices are both selected; check x, y, r, angle");
   return condition;
 }
 
@@ -191,9 +202,7 @@ BoundaryCondition resolveBoundary(const BoundaryDefinition& d, Model& m) {
   if (d.viscous) {
     const int history = historyOf(d, m);
     for (const Model::BoundaryEdge& be : selectedEdges()) {
-      const int material = d.material.empty() ? m.blocks.material[be.block]
-                                               : blockMaterialNamed(m, d.origin, "material", d.material);
-      const auto [zn, zs] = impedances(m.blockMaterials[material]);
+      const auto [zn, zs] = impedances(m.blockMaterials[dashpotMaterial(d, m, m.blocks.material[be.block])]);
       condition.dashpots.push_back({be.from, be.to, zn, zs, -1, d.inputVelocity, history, 0.0});
     }
     if (condition.dashpots.empty()) noEdge("dashpots");
