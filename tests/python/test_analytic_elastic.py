@@ -606,6 +606,9 @@ def test_hann_pulse_is_zero_outside_and_sine_squared_inside():
     assert v[0] == 0.0 and v[3] == 0.0
     assert v[1] == pytest.approx(0.02, rel=1e-12, abs=0)
     assert v[2] == pytest.approx(0.01, rel=1e-12, abs=0)
+    # The half-step lag: recorded at t + dt/2, the value of t.
+    lagged = el.hann_pulse_velocity(arrival + 0.01 + 1e-4, distance=50.0, c=c, amplitude=0.02, duration=0.04, dt=2e-4)
+    assert lagged == pytest.approx(0.01, rel=1e-12, abs=0)
     with pytest.raises(ValueError):
         el.hann_pulse_velocity(0.0, distance=1.0, c=0.0, amplitude=1.0, duration=1.0)
 
