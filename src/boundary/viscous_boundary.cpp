@@ -70,8 +70,12 @@ double rigidDashpotTimeStep(const Model& m, double frac) {
   double jointStiffness = 0.0;
   for (const JointMaterial& j : m.jointMaterials) jointStiffness = std::max(jointStiffness, std::max(j.kn, j.ks));
   double step = std::numeric_limits<double>::infinity();
+  // FRAC is the margin of the spring estimate (1.3-28), not of the dashpot's exact condition: the
+  // spring enters as k / FRAC^2, so that the limit is FRAC 2 sqrt(m / k) without a dashpot and
+  // tends to the dashpot's own 2 m / c when it dominates.
   auto limit = [&](double mass, double dashpot, double stiffness) {
-    if (dashpot > 0.0) step = std::min(step, frac * 4.0 * mass / (dashpot + std::sqrt(dashpot * dashpot + 4.0 * stiffness * mass)));
+    const double spring = stiffness / (frac * frac);
+    if (dashpot > 0.0) step = std::min(step, 4.0 * mass / (dashpot + std::sqrt(dashpot * dashpot + 4.0 * spring * mass)));
   };
   for (int b = 0; b < bl.size(); ++b) {
     if (!bl.movesFreely(b)) continue;

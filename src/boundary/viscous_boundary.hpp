@@ -18,7 +18,8 @@ void applyRigidViscousBoundaries(Model& model);
 
 // The largest stable step of rigid blocks with viscous edges, as dashpotTimeStep with the block's
 // mass (inertia), the dashpot's resistance to translation (rotation) and the joint stiffness
-// of the rigid-block step (1.3-28), times FRAC. Infinite without such edges.
+// of the rigid-block step (1.3-28) over FRAC^2: FRAC 2 sqrt(m / k) without dashpots, 2 m / c when
+// they dominate. Infinite without such edges.
 double rigidDashpotTimeStep(const Model& model, double frac);
 
 // The largest stable step of the gridpoints that dashpots act on (viscous edges and the side

@@ -64,6 +64,9 @@ FreeFieldColumn freeFieldColumn(const BoundaryDefinition& d, Model& m, const std
                              shown(b.y) + ") of block '" + m.blocks.name[be.block] +
                              "', which is not vertical: a free-field column runs beside a vertical side; give x = [x0, x0] "
                              "at that side");
+    if (std::abs(a.x - g.initialPosition[edges.front().from].x) > slack)
+      d.origin.fail("x", "selects vertical edges at x = " + shown(g.initialPosition[edges.front().from].x) + " and at x = " +
+                             shown(a.x) + ": a free-field column runs beside one straight side; give x = [x0, x0]");
     const double side = b.y < a.y ? -1.0 : 1.0;  // counter-clockwise: going down on the left side
     if (c.side != 0.0 && c.side != side)
       d.origin.fail("x", "selects edges of a left side and of a right side: give one free-field table per side");

@@ -98,7 +98,8 @@ BAD = {
                            "selects the edge from (0, 0) to (2, 0) of block 'layer', which is not vertical: a free-field "
                            "column runs beside a vertical side; give x = [x0, x0] at that side"),
     "left and right side": ('[[boundary]]\nx = [0.0, 10.0]\ny = [2.0, 8.0]\nfree_field = true\n', "x = ", "x",
-                            "selects edges of a left side and of a right side: give one free-field table per side"),
+                            "selects vertical edges at x = 0 and at x = 10: a free-field column runs beside one "
+                            "straight side; give x = [x0, x0]"),
     "gap in the side": (JOINT + '[[block]]\nname = "upper"\nmaterial = "rock"\n'
                         'vertices = [[0.0, 12.0], [10.0, 12.0], [10.0, 16.0], [0.0, 16.0]]\nzoning = { nx = 5, ny = 2 }\n'
                         '[[boundary]]\nx = [0.0, 0.0]\nfree_field = true\n', "[[boundary]]", None,
@@ -454,8 +455,9 @@ def test_a_rigid_blocks_viscous_edge_limits_the_step_as_a_dashpot_on_its_transla
     rotation = Z_LAYER * 2.0 * (1.25 - 0.75 + 1.25) / 3.0
     stiffness = kn * 2.0 * radius  # joint springs along the block, l_typ at most its diameter
     expected = {"rigid-block-motion": frac * 2.0 * math.sqrt(mass / (kn * 2.0)),  # 1.3-28, longest edge 2 m
-                "boundaries": frac * min(dashpot_step(mass, stiffness, translation),
-                                         dashpot_step(inertia, stiffness * radius ** 2, rotation))}
+                # FRAC on the springs only: k / FRAC^2.
+                "boundaries": min(dashpot_step(mass, stiffness / frac ** 2, translation),
+                                  dashpot_step(inertia, stiffness * radius ** 2 / frac ** 2, rotation))}
     assert results["run"]["step_limits"] == pytest.approx(expected, rel=1e-12, abs=0)
     assert results["run"]["dt"] == pytest.approx(min(expected.values()), rel=1e-12, abs=0)
 
