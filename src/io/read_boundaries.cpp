@@ -185,7 +185,7 @@ BoundaryDefinition readBoundary(TableReader& r) {
   const bool stress = r.has("stress") || tabulated, pressure = r.has("pressure");
   if (tabulated && r.has("stress")) r.fail("stress_table", "give either stress or stress_table");
   if (!(fix || vx || vy || stress || pressure))
-    r.failTable("sets nothing: give fix, velocity_x, velocity_y, stress, pressure or viscous = true");
+    r.failTable("sets nothing: give fix, velocity_x, velocity_y, stress, pressure, viscous = true or free_field = true");
   if ((fix || vx || vy) && (stress || pressure))
     r.failTable("a boundary either drives gridpoints (fix, velocity) or loads edges (stress, pressure); use two tables");
   if (stress && pressure) r.fail("pressure", "give either stress or pressure");
