@@ -9,7 +9,8 @@ namespace vdec {
 
 template <class A>
 void visitState(A& a, TimeFunction& f) {
-  a(f.kind), a(f.start), a(f.rate), a(f.frequency), a(f.phase), a(f.t), a(f.f), a(f.name);
+  a(f.kind), a(f.start), a(f.rate), a(f.frequency), a(f.phase), a(f.t), a(f.f), a(f.name), a(f.integrated);
+  a(f.antiderivative), a(f.atZero);
 }
 template <class A>
 void visitState(A& a, BlockMaterial& m) {

@@ -136,6 +136,7 @@ TimeFunction readTimeFunction(TableReader& r, std::string_view key) {
       f.t.push_back(row[0]);
       f.f.push_back(row[1]);
     }
+    if (t->boolean("integrate", false)) f.integrate();
   } else {
     t->fail("kind", "unknown history '" + kind + "'; use constant, linear, sine, cosine or table");
   }
