@@ -22,10 +22,10 @@ BLOCK = dict(width=2.0, height=1.0, density=2500.0, medium=MEDIUM)
 
 
 def run(tmp_path, *overrides):
-    args = [VDEC, "run", str(SCENE), "--out", str(tmp_path / "out")]
-    for o in overrides:
-        args += ["--set", o]
-    done = subprocess.run(args, capture_output=True, text=True, timeout=60)
+    """vdec on the BND-VISCOUS-RIGID scene with --set overrides: (the process, results.json or None)."""
+    sets = [word for override in overrides for word in ("--set", override)]
+    done = subprocess.run([VDEC, "run", str(SCENE), "--out", str(tmp_path / "out"), *sets], capture_output=True,
+                          text=True, timeout=60)
     results = tmp_path / "out" / "results.json"
     return done, json.loads(results.read_text()) if results.is_file() else None
 
