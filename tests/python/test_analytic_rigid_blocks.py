@@ -663,3 +663,37 @@ def test_viscous_rigid_block_step_limit_at_known_values():
     translation = 4 * 5000.0 / (2 * ZN + math.sqrt(4 * ZN ** 2 + 4 * k * 5000.0))
     assert rb.viscous_rigid_block_step_limit(joint_stiffness=1e10, frac=0.1, **VISCOUS_BLOCK) == \
         pytest.approx(0.1 * min(rotation, translation), rel=1e-14, abs=0)
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-BOUNDARY-005")
+def test_viscous_rigid_block_under_a_sine_wave():
+    vin, frequency, dt = (1e-3, 5e-4), 20.0, 5e-5
+    w = 2.0 * math.pi * frequency
+    mass = rb.rectangle_mass_matrix(width=2.0, height=1.0, density=2500.0)
+    dashpots = rb.rigid_edge_dashpot_matrix(edge_from=(-1.0, -0.5), edge_to=(1.0, -0.5), centroid=(0.0, 0.0),
+                                            normal_impedance=ZN, shear_impedance=ZS)
+    load = rb.rigid_edge_input_force(edge_from=(-1.0, -0.5), edge_to=(1.0, -0.5), centroid=(0.0, 0.0),
+                                     normal_impedance=ZN, shear_impedance=ZS, input_velocity=vin)
+    common = dict(initial_velocity=(0.0, 0.0, 0.0), input_velocity=vin, input_frequency=frequency, **VISCOUS_BLOCK)
+    # The recurrence with the load at each step's start, stepped literally.
+    q, loop = np.zeros(3), [np.zeros(3)]
+    for n in range(600):
+        q = q + dt * np.linalg.solve(mass, load * math.sin(w * n * dt) - dashpots @ q)
+        loop.append(q)
+    loop = np.array(loop)
+    t = dt * np.arange(601)
+    for k, dof in enumerate(("vx", "vy", "w")):
+        closed = rb.viscous_rigid_block_velocity_discrete(t, dof=dof, dt=dt, **common)
+        assert np.allclose(closed, loop[:, k], rtol=0, atol=1e-15), dof
+    # vy alone, by hand: dv/dt = lam (2 v_in,y sin(w t) - v), v(0) = 0, lam = 2 ZN / 5000:
+    # v = 2 v_in,y lam (lam sin wt - w cos wt + w e^(-lam t)) / (lam^2 + w^2).
+    lam = 2.0 * ZN / 5000.0
+    for s in (0.003, 0.02, 0.1):
+        by_hand = 2 * 5e-4 * lam * (lam * math.sin(w * s) - w * math.cos(w * s) + w * math.exp(-lam * s)) / (lam ** 2 + w ** 2)
+        assert rb.viscous_rigid_block_velocity(s, dof="vy", **common) == pytest.approx(by_hand, rel=1e-12, abs=0)
+    # The continuum solves M dq/dt = f sin(w t) - C q.
+    h = 1e-6
+    q = lambda s: np.array([rb.viscous_rigid_block_velocity(s, dof=d, **common) for d in ("vx", "vy", "w")])
+    for s in (0.004, 0.03):
+        derivative = (q(s + h) - q(s - h)) / (2.0 * h)
+        assert np.allclose(mass @ derivative, load * math.sin(w * s) - dashpots @ q(s), rtol=1e-7, atol=1e-9)

@@ -583,7 +583,7 @@ def _viscous_block_system(width, height, density, edge_from, edge_to, medium, in
 
 
 def viscous_rigid_block_velocity(t, *, width, height, density, edge_from, edge_to, medium, initial_velocity,
-                                 dof, input_velocity=None):
+                                 dof, input_velocity=None, input_frequency=None):
     """Velocity component dof ("vx", "vy" or "w") of a free W x H rigid block (no gravity, no
     contact) with one viscous edge, from q(0) = initial_velocity = (vx, vy, w):
 
@@ -595,24 +595,41 @@ def viscous_rigid_block_velocity(t, *, width, height, density, edge_from, edge_t
     twice the incident particle velocity, without rotation. Edge points are in the rectangle's
     frame (centroid at the origin) at t = 0; the motion is linear, so the edge's rotation with the
     block (an O(rotation) change of C) is left out: valid while the block turns through a
-    negligible angle."""
+    negligible angle.
+
+    With input_frequency (Hz) the incident wave is v_in sin(w t), w = 2 pi input_frequency (a
+    `sine` history): f becomes f sin(w t), whose steady response is q_p(t) = Im(Q e^{i w t}) with
+    (i w I + A) Q = A q_s (q_s = C^-1 f as above, so M^-1 f = A q_s), and
+    q(t) = q_p(t) + expm(-A t) (q0 - q_p(0))."""
     a, q0, qs = _viscous_block_system(width, height, density, edge_from, edge_to, medium, initial_velocity,
                                       input_velocity)
     t = np.asarray(t, dtype=float)
     k = _DOF[dof]
-    out = np.array([qs[k] + (scipy.linalg.expm(-a * float(s)) @ (q0 - qs))[k] for s in t.ravel()])
+    if input_frequency is None:
+        out = np.array([qs[k] + (scipy.linalg.expm(-a * float(s)) @ (q0 - qs))[k] for s in t.ravel()])
+        return out.reshape(t.shape)
+    w = 2.0 * math.pi * input_frequency
+    amplitude = np.linalg.solve(1j * w * np.eye(3) + a, a @ qs)
+    start = q0 - amplitude.imag
+    out = np.array([(amplitude * np.exp(1j * w * float(s))).imag[k] + (scipy.linalg.expm(-a * float(s)) @ start)[k]
+                    for s in t.ravel()])
     return out.reshape(t.shape)
 
 
 def viscous_rigid_block_velocity_discrete(t, *, width, height, density, edge_from, edge_to, medium,
-                                          initial_velocity, dof, dt, input_velocity=None):
+                                          initial_velocity, dof, dt, input_velocity=None, input_frequency=None):
     """The solver's recurrence for viscous_rigid_block_velocity: the dashpots act on the velocity
     of the half step before (the velocity given at -dt/2 is q_{-1/2}), so 1.3-21 without damping is
 
         q_{n+1/2} = q_{n-1/2} + dt M^-1 (f - C q_{n-1/2}),   i.e.  q_{n-1/2} = q_s + (I - dt A)^n (q0 - q_s),
 
     sampled at t = n dt (a block velocity sample at time t is v(t - dt/2)). t must lie on the step
-    grid (to 1e-6 of a step)."""
+    grid (to 1e-6 of a step).
+
+    With input_frequency the load is f sin(w n dt), taken at the time of the step's start (the
+    positions the dashpots act on): q_{n+1/2} = q_{n-1/2} + dt (A q_s sin(w n dt) - A q_{n-1/2}).
+    Its steady response is Im(P z^n), z = e^{i w dt}, with P z = P + dt (A q_s - A P), i.e.
+    ((z - 1) I + dt A) P = dt A q_s; so q_{n-1/2} = Im(P z^n) + (I - dt A)^n (q0 - Im P)."""
     a, q0, qs = _viscous_block_system(width, height, density, edge_from, edge_to, medium, initial_velocity,
                                       input_velocity)
     steps = np.asarray(t, dtype=float) / dt
@@ -621,7 +638,14 @@ def viscous_rigid_block_velocity_discrete(t, *, width, height, density, edge_fro
         raise ValueError("t is not on the time-step grid t = n dt, n >= 0")
     step = np.eye(3) - dt * a
     k = _DOF[dof]
-    out = np.array([qs[k] + (np.linalg.matrix_power(step, int(j)) @ (q0 - qs))[k] for j in n.ravel()])
+    if input_frequency is None:
+        out = np.array([qs[k] + (np.linalg.matrix_power(step, int(j)) @ (q0 - qs))[k] for j in n.ravel()])
+        return out.reshape(n.shape)
+    z = np.exp(2j * math.pi * input_frequency * dt)
+    amplitude = np.linalg.solve((z - 1.0) * np.eye(3) + dt * a, dt * (a @ qs))
+    start = q0 - amplitude.imag
+    out = np.array([(amplitude * z ** int(j)).imag[k] + (np.linalg.matrix_power(step, int(j)) @ start)[k]
+                    for j in n.ravel()])
     return out.reshape(n.shape)
 
 
