@@ -513,3 +513,187 @@ def test_newmark_sliding_block_known_values_and_consistency():
                        rb.sliding_block_base_displacement(t, base_acceleration=5.0, pulse_start=0.05,
                                                           pulse_duration=0.1), rtol=0.0, atol=0.0)
     assert rb.newmark_rectangular_pulse_slip(g=10.0, phi_deg=30.0, base_acceleration=5.0, pulse_duration=0.1) == 0.0
+
+
+# ---------------------------------------------------------------- rigid block on a viscous edge
+# The BND-VISCOUS-RIGID block: 2 m x 1 m, 2500 kg/m^3 (m = 5000, I = 5000 x 5 / 12 = 2083.33),
+# its bottom edge on a medium of rho = 2000, E = 5e7, nu = 0.25: G = 2e7, K = 5e7 / 1.5 = 3.333e7,
+# rho C_s = sqrt(2000 x 2e7) = 2e5, rho C_p = sqrt(2000 x (3.333e7 + 2.667e7)) = sqrt(1.2e11) = 3.4641e5.
+VISCOUS_MEDIUM = dict(density=2000.0, young=5e7, poisson=0.25)
+VISCOUS_BLOCK = dict(width=2.0, height=1.0, density=2500.0, edge_from=(-1.0, -0.5), edge_to=(1.0, -0.5),
+                     medium=VISCOUS_MEDIUM)
+ZN, ZS = math.sqrt(1.2e11), 2e5
+
+
+def lagged_dashpot_loop(n_steps, q0, mass_matrix, dashpot_matrix, dt, load=(0.0, 0.0, 0.0)):
+    """q += dt M^-1 (f - C q), stepped literally, component by component."""
+    q, out = list(q0), [list(q0)]
+    for _ in range(n_steps):
+        force = [load[i] - sum(dashpot_matrix[i][j] * q[j] for j in range(3)) for i in range(3)]
+        q = [q[i] + dt * force[i] / mass_matrix[i][i] for i in range(3)]
+        out.append(q)
+    return np.array(out)
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-BOUNDARY-005")
+def test_dashpot_matrix_of_rigid_edges_at_known_values():
+    zn, zs = rb.medium_impedances(**VISCOUS_MEDIUM)
+    assert (zn, zs) == (pytest.approx(ZN, rel=1e-14, abs=0), pytest.approx(ZS, rel=1e-14, abs=0))
+    # Bottom edge, by hand: [[Zs L, 0, Zs L H/2], [0, Zn L, 0], [Zs L H/2, 0, Zn L^3/12 + Zs L H^2/4]].
+    bottom = rb.rigid_edge_dashpot_matrix(edge_from=(-1.0, -0.5), edge_to=(1.0, -0.5), centroid=(0.0, 0.0),
+                                          normal_impedance=ZN, shear_impedance=ZS)
+    expected = [[4e5, 0.0, 2e5], [0.0, 2.0 * ZN, 0.0], [2e5, 0.0, ZN * 8.0 / 12.0 + 1e5]]
+    assert np.allclose(bottom, expected, rtol=1e-14, atol=1e-9)
+    # The right side from (1, -0.5) up to (1, 0.5): n = (1, 0), t = (0, 1), r = (1, y). Normal
+    # dashpots on vx - w y (mean y 0), shear on vy + w: [[Zn, 0, 0], [0, Zs, Zs], [0, Zs, Zn/12 + Zs]].
+    right = rb.rigid_edge_dashpot_matrix(edge_from=(1.0, -0.5), edge_to=(1.0, 0.5), centroid=(0.0, 0.0),
+                                         normal_impedance=ZN, shear_impedance=ZS)
+    assert np.allclose(right, [[ZN, 0.0, 0.0], [0.0, ZS, ZS], [0.0, ZS, ZN / 12.0 + ZS]], rtol=1e-14, atol=1e-9)
+    # Independent route: Gauss-Legendre quadrature of G^T D G along a slanted edge.
+    a, b, c = np.array([0.3, -0.7]), np.array([1.1, 0.4]), np.array([0.2, 0.1])
+    t = (b - a) / np.linalg.norm(b - a)
+    n = np.array([t[1], -t[0]])
+    d = ZN * np.outer(n, n) + ZS * np.outer(t, t)
+    nodes, weights = np.polynomial.legendre.leggauss(4)
+    quadrature = np.zeros((3, 3))
+    for s, w in zip(nodes, weights):
+        r = a + 0.5 * (s + 1.0) * (b - a) - c
+        g = np.array([[1.0, 0.0, -r[1]], [0.0, 1.0, r[0]]])
+        quadrature += 0.5 * w * np.linalg.norm(b - a) * g.T @ d @ g
+    slanted = rb.rigid_edge_dashpot_matrix(edge_from=a, edge_to=b, centroid=c, normal_impedance=ZN, shear_impedance=ZS)
+    assert np.allclose(slanted, quadrature, rtol=1e-13, atol=1e-8)
+    # The incident wave's load is C (2 v_in, 0): the steady state.
+    vin = np.array([0.3, -0.2])
+    load = rb.rigid_edge_input_force(edge_from=a, edge_to=b, centroid=c, normal_impedance=ZN, shear_impedance=ZS,
+                                     input_velocity=vin)
+    assert np.allclose(load, slanted @ np.array([0.6, -0.4, 0.0]), rtol=1e-13, atol=1e-8)
+    with pytest.raises(ValueError):
+        rb.rigid_edge_dashpot_matrix(edge_from=a, edge_to=a, centroid=c, normal_impedance=ZN, shear_impedance=ZS)
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-BOUNDARY-005")
+def test_viscous_rigid_block_recurrence_continuum_and_their_difference():
+    q0 = (1e-3, -2e-3, 5e-4)
+    mass = rb.rectangle_mass_matrix(width=2.0, height=1.0, density=2500.0)
+    assert np.allclose(np.diag(mass), [5000.0, 5000.0, 5000.0 * 5.0 / 12.0], rtol=1e-15, atol=0)
+    dashpots = rb.rigid_edge_dashpot_matrix(edge_from=(-1.0, -0.5), edge_to=(1.0, -0.5), centroid=(0.0, 0.0),
+                                            normal_impedance=ZN, shear_impedance=ZS)
+    dt = 5e-5
+    loop = lagged_dashpot_loop(300, q0, mass, dashpots, dt)
+    t = dt * np.arange(301)
+    for k, dof in enumerate(("vx", "vy", "w")):
+        closed = rb.viscous_rigid_block_velocity_discrete(t, initial_velocity=q0, dof=dof, dt=dt, **VISCOUS_BLOCK)
+        assert np.allclose(closed, loop[:, k], rtol=0, atol=1e-16), dof
+    # vy is a mode of its own: Zn L / m = 2 ZN / 5000 /s, e^(-lambda t) and (1 - lambda dt)^n.
+    lam = 2.0 * ZN / 5000.0
+    assert rb.viscous_rigid_block_velocity(0.01, initial_velocity=q0, dof="vy", **VISCOUS_BLOCK) == \
+        pytest.approx(-2e-3 * math.exp(-lam * 0.01), rel=1e-13, abs=0)
+    assert rb.viscous_rigid_block_velocity_discrete(0.01, initial_velocity=q0, dof="vy", dt=dt, **VISCOUS_BLOCK) == \
+        pytest.approx(-2e-3 * (1.0 - lam * dt) ** 200, rel=1e-12, abs=0)
+    # The continuum solves M dq/dt = -C q: central differences of it.
+    h = 1e-6
+    q = lambda s: np.array([rb.viscous_rigid_block_velocity(s, initial_velocity=q0, dof=d, **VISCOUS_BLOCK)
+                            for d in ("vx", "vy", "w")])
+    for s in (0.0 + 2 * h, 0.005, 0.02):
+        derivative = (q(s + h) - q(s - h)) / (2.0 * h)
+        assert np.allclose(mass @ derivative, -dashpots @ q(s), rtol=1e-7, atol=1e-12)
+    # The decay rates: 138.56 for vy; 45.98 and 192.87 for (vx, w), roots of
+    # lambda^2 - (80 + 158.79) lambda + (80 x 158.79 - 40 x 96) with C_ww / I = (ZN 8/12 + 1e5) / 2083.3.
+    cww = (ZN * 8.0 / 12.0 + 1e5) / (5000.0 * 5.0 / 12.0)
+    tr, det = 80.0 + cww, 80.0 * cww - 40.0 * 96.0
+    root = math.sqrt(tr * tr - 4.0 * det)
+    rates = rb.viscous_rigid_block_decay_rates(**VISCOUS_BLOCK)
+    assert np.allclose(rates, sorted([(tr - root) / 2.0, lam, (tr + root) / 2.0]), rtol=1e-12, atol=0)
+    assert rb.viscous_rigid_block_critical_step(**VISCOUS_BLOCK) == pytest.approx(4.0 / (tr + root), rel=1e-12, abs=0)
+    # The lag bound holds for the two closed forms and is first order: it halves with dt.
+    for dof in ("vx", "vy", "w"):
+        bound = rb.viscous_rigid_block_lag_error_bound(initial_velocity=q0, dof=dof, dt=dt, **VISCOUS_BLOCK)
+        long_t = dt * np.arange(2001)
+        cont = rb.viscous_rigid_block_velocity(long_t, initial_velocity=q0, dof=dof, **VISCOUS_BLOCK)
+        disc = rb.viscous_rigid_block_velocity_discrete(long_t, initial_velocity=q0, dof=dof, dt=dt, **VISCOUS_BLOCK)
+        error = np.max(np.abs(cont - disc)) / np.max(np.abs(cont))
+        assert 0.5 * bound < error <= bound, dof
+        half = rb.viscous_rigid_block_lag_error_bound(initial_velocity=q0, dof=dof, dt=dt / 2, **VISCOUS_BLOCK)
+        assert half == pytest.approx(bound / 2.0, rel=0.01, abs=0)
+    # The dissipation is the kinetic energy the recurrence lost, summed step by step.
+    # Each step the dashpots' force -C q_{n-1/2} works on the mean velocity: dissipation dt C q . qbar.
+    taken = sum(dt * (dashpots @ loop[i]) @ (0.5 * (loop[i] + loop[i + 1])) for i in range(300))
+    assert taken > 0.0
+    assert rb.viscous_rigid_block_dissipation(initial_velocity=q0, dt=dt, time=300 * dt, **VISCOUS_BLOCK) == \
+        pytest.approx(taken, rel=1e-12, abs=0)
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-BOUNDARY-005")
+def test_viscous_rigid_block_under_an_incident_wave_tends_to_twice_its_velocity():
+    vin = (1e-3, 5e-4)
+    mass = rb.rectangle_mass_matrix(width=2.0, height=1.0, density=2500.0)
+    dashpots = rb.rigid_edge_dashpot_matrix(edge_from=(-1.0, -0.5), edge_to=(1.0, -0.5), centroid=(0.0, 0.0),
+                                            normal_impedance=ZN, shear_impedance=ZS)
+    # On the bottom edge n = (0, -1): the load 2 L (Zs vx, Zn vy) at (0, -H/2), moment H/2 x 2 L Zs vx.
+    load = (2 * 2 * ZS * 1e-3, 2 * 2 * ZN * 5e-4, 0.5 * 2 * 2 * ZS * 1e-3)
+    assert np.allclose(rb.rigid_edge_input_force(edge_from=(-1.0, -0.5), edge_to=(1.0, -0.5), centroid=(0.0, 0.0),
+                                                 normal_impedance=ZN, shear_impedance=ZS, input_velocity=vin),
+                       load, rtol=1e-14, atol=0)
+    dt = 5e-5
+    loop = lagged_dashpot_loop(400, (0.0, 0.0, 0.0), mass, dashpots, dt, load)
+    t = dt * np.arange(401)
+    for k, dof in enumerate(("vx", "vy", "w")):
+        closed = rb.viscous_rigid_block_velocity_discrete(t, initial_velocity=(0, 0, 0), input_velocity=vin, dof=dof,
+                                                          dt=dt, **VISCOUS_BLOCK)
+        assert np.allclose(closed, loop[:, k], rtol=0, atol=1e-16), dof
+    late = 2.0
+    assert rb.viscous_rigid_block_velocity(late, initial_velocity=(0, 0, 0), input_velocity=vin, dof="vx",
+                                           **VISCOUS_BLOCK) == pytest.approx(2e-3, rel=1e-12, abs=0)
+    assert rb.viscous_rigid_block_velocity(late, initial_velocity=(0, 0, 0), input_velocity=vin, dof="vy",
+                                           **VISCOUS_BLOCK) == pytest.approx(1e-3, rel=1e-12, abs=0)
+    assert abs(rb.viscous_rigid_block_velocity(late, initial_velocity=(0, 0, 0), input_velocity=vin, dof="w",
+                                               **VISCOUS_BLOCK)) < 1e-15
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-BOUNDARY-005")
+def test_viscous_rigid_block_step_limit_at_known_values():
+    # Soft joint (k = 0): FRAC min(2 m / c_t, 2 I / c_r), c_t = ZN L = 2 ZN, c_r = ZN L (L^2/12 + H^2/4) = 7 ZN / 6.
+    no_joint = rb.viscous_rigid_block_step_limit(joint_stiffness=0.0, frac=1.0, **VISCOUS_BLOCK)
+    assert no_joint == pytest.approx(min(2 * 5000.0 / (2 * ZN), 2 * (5000.0 * 5 / 12) / (7 * ZN / 6)), rel=1e-14, abs=0)
+    assert no_joint == pytest.approx(2 * (5000.0 * 5 / 12) / (7 * ZN / 6), rel=1e-14, abs=0)
+    # No dashpot beside a joint k: the undamped 2 sqrt(m / k) of 4 m / sqrt(4 k m).
+    c_r, inertia, radius = 7 * ZN / 6, 5000.0 * 5 / 12, math.sqrt(1.25)
+    k = 1e10 * 2 * radius
+    rotation = 4 * inertia / (c_r + math.sqrt(c_r ** 2 + 4 * k * radius ** 2 * inertia))
+    translation = 4 * 5000.0 / (2 * ZN + math.sqrt(4 * ZN ** 2 + 4 * k * 5000.0))
+    assert rb.viscous_rigid_block_step_limit(joint_stiffness=1e10, frac=0.1, **VISCOUS_BLOCK) == \
+        pytest.approx(0.1 * min(rotation, translation), rel=1e-14, abs=0)
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-BOUNDARY-005")
+def test_viscous_rigid_block_under_a_sine_wave():
+    vin, frequency, dt = (1e-3, 5e-4), 20.0, 5e-5
+    w = 2.0 * math.pi * frequency
+    mass = rb.rectangle_mass_matrix(width=2.0, height=1.0, density=2500.0)
+    dashpots = rb.rigid_edge_dashpot_matrix(edge_from=(-1.0, -0.5), edge_to=(1.0, -0.5), centroid=(0.0, 0.0),
+                                            normal_impedance=ZN, shear_impedance=ZS)
+    load = rb.rigid_edge_input_force(edge_from=(-1.0, -0.5), edge_to=(1.0, -0.5), centroid=(0.0, 0.0),
+                                     normal_impedance=ZN, shear_impedance=ZS, input_velocity=vin)
+    common = dict(initial_velocity=(0.0, 0.0, 0.0), input_velocity=vin, input_frequency=frequency, **VISCOUS_BLOCK)
+    # The recurrence with the load at each step's start, stepped literally.
+    q, loop = np.zeros(3), [np.zeros(3)]
+    for n in range(600):
+        q = q + dt * np.linalg.solve(mass, load * math.sin(w * n * dt) - dashpots @ q)
+        loop.append(q)
+    loop = np.array(loop)
+    t = dt * np.arange(601)
+    for k, dof in enumerate(("vx", "vy", "w")):
+        closed = rb.viscous_rigid_block_velocity_discrete(t, dof=dof, dt=dt, **common)
+        assert np.allclose(closed, loop[:, k], rtol=0, atol=1e-15), dof
+    # vy alone, by hand: dv/dt = lam (2 v_in,y sin(w t) - v), v(0) = 0, lam = 2 ZN / 5000:
+    # v = 2 v_in,y lam (lam sin wt - w cos wt + w e^(-lam t)) / (lam^2 + w^2).
+    lam = 2.0 * ZN / 5000.0
+    for s in (0.003, 0.02, 0.1):
+        by_hand = 2 * 5e-4 * lam * (lam * math.sin(w * s) - w * math.cos(w * s) + w * math.exp(-lam * s)) / (lam ** 2 + w ** 2)
+        assert rb.viscous_rigid_block_velocity(s, dof="vy", **common) == pytest.approx(by_hand, rel=1e-12, abs=0)
+    # The continuum solves M dq/dt = f sin(w t) - C q.
+    h = 1e-6
+    q = lambda s: np.array([rb.viscous_rigid_block_velocity(s, dof=d, **common) for d in ("vx", "vy", "w")])
+    for s in (0.004, 0.03):
+        derivative = (q(s + h) - q(s - h)) / (2.0 * h)
+        assert np.allclose(mass @ derivative, load * math.sin(w * s) - dashpots @ q(s), rtol=1e-7, atol=1e-9)

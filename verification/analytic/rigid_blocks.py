@@ -486,3 +486,253 @@ def critical_frac(*, width, height, density, kn, ks, typical_length):
     m = density * width * height
     dt_at_frac_one = rigid_block_time_step(mass=m, kn=kn, ks=ks, typical_length=typical_length, frac=1.0)
     return 2.0 / (w_max * dt_at_frac_one)
+
+
+# ---------------------------------------------------------------- rigid block on a viscous edge
+
+
+def medium_impedances(*, density, young, poisson):
+    """(rho C_p, rho C_s) of an elastic medium: C_p = sqrt((K + 4 G / 3) / rho) (one-dimensional
+    strain), C_s = sqrt(G / rho), K = E / (3 (1 - 2 nu)), G = E / (2 (1 + nu)) (Kolsky, Stress Waves
+    in Solids; the impedances of Lysmer and Kuhlemeyer's dashpots, NUREG/CR-5429 1.3-35, 1.3-36)."""
+    if not (density > 0.0 and young > 0.0 and -1.0 < poisson < 0.5):
+        raise ValueError(f"density {density}, young {young}, poisson {poisson}: not an elastic medium")
+    bulk = young / (3.0 * (1.0 - 2.0 * poisson))
+    shear = young / (2.0 * (1.0 + poisson))
+    return math.sqrt(density * (bulk + 4.0 * shear / 3.0)), math.sqrt(density * shear)
+
+
+def _edge_frame(edge_from, edge_to):
+    a, b = np.asarray(edge_from, dtype=float), np.asarray(edge_to, dtype=float)
+    d = b - a
+    length = math.hypot(d[0], d[1])
+    if not length > 0.0:
+        raise ValueError("the edge has no length")
+    t = d / length
+    return a, b, length, t, np.array([t[1], -t[0]])  # n outward: the block on the left of from -> to
+
+
+def rigid_edge_dashpot_matrix(*, edge_from, edge_to, centroid, normal_impedance, shear_impedance):
+    """The 3 x 3 dashpot matrix C of a viscous edge of a rigid block, on q = (vx, vy, w) at the
+    centroid: the edge's force and moment about the centroid are -C q.
+
+    A point r (from the centroid) of the edge moves at u = v + w (-r_y, r_x) = G(r) q with
+    G = [[1, 0, -r_y], [0, 1, r_x]]; the dashpots' traction is -D u, D = Zn n n^T + Zs t t^T
+    (Lysmer and Kuhlemeyer; n the outward normal, t the edge direction). The generalised force
+    (Fx, Fy, M) of a traction T at r is G^T T (M = r_x T_y - r_y T_x), so C = int_edge G^T D G ds.
+    G is linear in r and r linear along the edge, r = ra + s (rb - ra) with s in [0, 1]; the
+    integral is exact from int r ds = L (ra + rb) / 2 and
+    int r r^T ds = L [(ra ra^T + rb rb^T) / 3 + (ra rb^T + rb ra^T) / 6].
+
+    For the bottom edge of a W x H rectangle (ra = (-W/2, -H/2), rb = (W/2, -H/2), L = W):
+    C = [[Zs W, 0, Zs W H/2], [0, Zn W, 0], [Zs W H/2, 0, Zn W^3/12 + Zs W H^2/4]]: the shear
+    dashpots, below the centroid, couple vx and w; the normal ones resist rotation by Zn W^3/12.
+    """
+    a, b, length, t, n = _edge_frame(edge_from, edge_to)
+    c = np.asarray(centroid, dtype=float)
+    ra, rb = a - c, b - c
+    d = normal_impedance * np.outer(n, n) + shear_impedance * np.outer(t, t)
+    mean_r = 0.5 * (ra + rb)
+    second = (np.outer(ra, ra) + np.outer(rb, rb)) / 3.0 + (np.outer(ra, rb) + np.outer(rb, ra)) / 6.0
+    # G(r) = [I | p(r)] with p(r) = (-r_y, r_x), linear in r: p = P r, P = [[0, -1], [1, 0]].
+    rot = np.array([[0.0, -1.0], [1.0, 0.0]])
+    matrix = np.zeros((3, 3))
+    matrix[:2, :2] = length * d
+    coupling = length * d @ rot @ mean_r
+    matrix[:2, 2] = coupling
+    matrix[2, :2] = coupling
+    matrix[2, 2] = length * np.trace(rot.T @ d @ rot @ second)
+    return matrix
+
+
+def rigid_edge_input_force(*, edge_from, edge_to, centroid, normal_impedance, shear_impedance, input_velocity):
+    """Generalised force (Fx, Fy, M about the centroid) of an incident wave of particle velocity
+    v_in on a viscous edge: the traction 2 D v_in (Joyner and Chen 1975), uniform along the edge,
+    so F = 2 L D v_in acting at the edge's midpoint. Equal to C (2 v_in, 0): a block translating
+    at 2 v_in is in equilibrium with its dashpots, which is why the steady velocity is 2 v_in."""
+    a, b, length, t, n = _edge_frame(edge_from, edge_to)
+    vin = np.asarray(input_velocity, dtype=float)
+    force = 2.0 * length * (normal_impedance * np.dot(vin, n) * n + shear_impedance * np.dot(vin, t) * t)
+    r = 0.5 * (a + b) - np.asarray(centroid, dtype=float)
+    return np.array([force[0], force[1], r[0] * force[1] - r[1] * force[0]])
+
+
+def rectangle_mass_matrix(*, width, height, density):
+    """diag(m, m, I) of a W x H rectangle (unit thickness) about its centroid: m = rho W H,
+    I = m (W^2 + H^2) / 12."""
+    m = density * width * height
+    return np.diag([m, m, m * (width ** 2 + height ** 2) / 12.0])
+
+
+_DOF = {"vx": 0, "vy": 1, "w": 2}
+
+
+def _viscous_block_system(width, height, density, edge_from, edge_to, medium, initial_velocity, input_velocity):
+    zn, zs = medium_impedances(**medium)
+    centroid = (0.0, 0.0)  # the rectangle's own frame: vertices at (+-W/2, +-H/2)
+    c = rigid_edge_dashpot_matrix(edge_from=edge_from, edge_to=edge_to, centroid=centroid, normal_impedance=zn,
+                                  shear_impedance=zs)
+    m = rectangle_mass_matrix(width=width, height=height, density=density)
+    a = np.linalg.solve(m, c)
+    q0 = np.asarray(initial_velocity, dtype=float)
+    if input_velocity is None:
+        return a, q0, np.zeros(3)
+    f = rigid_edge_input_force(edge_from=edge_from, edge_to=edge_to, centroid=centroid, normal_impedance=zn,
+                               shear_impedance=zs, input_velocity=input_velocity)
+    return a, q0, np.linalg.solve(c, f)
+
+
+def viscous_rigid_block_velocity(t, *, width, height, density, edge_from, edge_to, medium, initial_velocity,
+                                 dof, input_velocity=None, input_frequency=None):
+    """Velocity component dof ("vx", "vy" or "w") of a free W x H rigid block (no gravity, no
+    contact) with one viscous edge, from q(0) = initial_velocity = (vx, vy, w):
+
+        M dq/dt = -C q + f,   q(t) = q_s + expm(-A t) (q0 - q_s),   A = M^-1 C,  q_s = C^-1 f,
+
+    M = rectangle_mass_matrix, C = rigid_edge_dashpot_matrix with the impedances of the medium
+    beyond the edge (medium = {density, young, poisson}), f = rigid_edge_input_force of the
+    incident wave input_velocity (none: f = 0). q_s = (2 v_in, 0): the block ends up moving at
+    twice the incident particle velocity, without rotation. Edge points are in the rectangle's
+    frame (centroid at the origin) at t = 0; the motion is linear, so the edge's rotation with the
+    block (an O(rotation) change of C) is left out: valid while the block turns through a
+    negligible angle.
+
+    With input_frequency (Hz) the incident wave is v_in sin(w t), w = 2 pi input_frequency (a
+    `sine` history): f becomes f sin(w t), whose steady response is q_p(t) = Im(Q e^{i w t}) with
+    (i w I + A) Q = A q_s (q_s = C^-1 f as above, so M^-1 f = A q_s), and
+    q(t) = q_p(t) + expm(-A t) (q0 - q_p(0))."""
+    a, q0, qs = _viscous_block_system(width, height, density, edge_from, edge_to, medium, initial_velocity,
+                                      input_velocity)
+    t = np.asarray(t, dtype=float)
+    k = _DOF[dof]
+    if input_frequency is None:
+        out = np.array([qs[k] + (scipy.linalg.expm(-a * float(s)) @ (q0 - qs))[k] for s in t.ravel()])
+        return out.reshape(t.shape)
+    w = 2.0 * math.pi * input_frequency
+    amplitude = np.linalg.solve(1j * w * np.eye(3) + a, a @ qs)
+    start = q0 - amplitude.imag
+    out = np.array([(amplitude * np.exp(1j * w * float(s))).imag[k] + (scipy.linalg.expm(-a * float(s)) @ start)[k]
+                    for s in t.ravel()])
+    return out.reshape(t.shape)
+
+
+def viscous_rigid_block_velocity_discrete(t, *, width, height, density, edge_from, edge_to, medium,
+                                          initial_velocity, dof, dt, input_velocity=None, input_frequency=None):
+    """The solver's recurrence for viscous_rigid_block_velocity: the dashpots act on the velocity
+    of the half step before (the velocity given at -dt/2 is q_{-1/2}), so 1.3-21 without damping is
+
+        q_{n+1/2} = q_{n-1/2} + dt M^-1 (f - C q_{n-1/2}),   i.e.  q_{n-1/2} = q_s + (I - dt A)^n (q0 - q_s),
+
+    sampled at t = n dt (a block velocity sample at time t is v(t - dt/2)). t must lie on the step
+    grid (to 1e-6 of a step).
+
+    With input_frequency the load is f sin(w n dt), taken at the time of the step's start (the
+    positions the dashpots act on): q_{n+1/2} = q_{n-1/2} + dt (A q_s sin(w n dt) - A q_{n-1/2}).
+    Its steady response is Im(P z^n), z = e^{i w dt}, with P z = P + dt (A q_s - A P), i.e.
+    ((z - 1) I + dt A) P = dt A q_s; so q_{n-1/2} = Im(P z^n) + (I - dt A)^n (q0 - Im P)."""
+    a, q0, qs = _viscous_block_system(width, height, density, edge_from, edge_to, medium, initial_velocity,
+                                      input_velocity)
+    steps = np.asarray(t, dtype=float) / dt
+    n = np.rint(steps)
+    if np.any(np.abs(steps - n) > 1e-6) or np.any(n < 0):
+        raise ValueError("t is not on the time-step grid t = n dt, n >= 0")
+    step = np.eye(3) - dt * a
+    k = _DOF[dof]
+    if input_frequency is None:
+        out = np.array([qs[k] + (np.linalg.matrix_power(step, int(j)) @ (q0 - qs))[k] for j in n.ravel()])
+        return out.reshape(n.shape)
+    z = np.exp(2j * math.pi * input_frequency * dt)
+    amplitude = np.linalg.solve((z - 1.0) * np.eye(3) + dt * a, dt * (a @ qs))
+    start = q0 - amplitude.imag
+    out = np.array([(amplitude * z ** int(j)).imag[k] + (np.linalg.matrix_power(step, int(j)) @ start)[k]
+                    for j in n.ravel()])
+    return out.reshape(n.shape)
+
+
+def viscous_rigid_block_decay_rates(*, width, height, density, edge_from, edge_to, medium):
+    """The decay rates lambda (1/s) of the free block's modes: the eigenvalues of A = M^-1 C
+    (real and >= 0: C is symmetric positive semi-definite and M positive), sorted."""
+    a, _, _ = _viscous_block_system(width, height, density, edge_from, edge_to, medium, (0.0, 0.0, 0.0), None)
+    return np.sort(np.linalg.eigvals(a).real)
+
+
+def viscous_rigid_block_critical_step(*, width, height, density, edge_from, edge_to, medium):
+    """The largest stable step of the lagged-velocity recurrence: (I - dt A)^n decays while
+    |1 - dt lambda| < 1 for every decay rate, i.e. dt < 2 / lambda_max."""
+    return 2.0 / viscous_rigid_block_decay_rates(width=width, height=height, density=density, edge_from=edge_from,
+                                                 edge_to=edge_to, medium=medium)[-1]
+
+
+def viscous_rigid_block_dissipation(*, width, height, density, edge_from, edge_to, medium, initial_velocity, dt,
+                                    time):
+    """Work the dashpots have taken after `time` (on the step grid) from the free block of
+    viscous_rigid_block_velocity_discrete, no input: the kinetic energy lost,
+    (q0^T M q0 - q_n^T M q_n) / 2. Exact for the recurrence, since with the midpoint velocity
+    qbar = (q_{n-1/2} + q_{n+1/2}) / 2 the change of q^T M q / 2 over a step is dt F . qbar, F the
+    dashpots' generalised force."""
+    m = rectangle_mass_matrix(width=width, height=height, density=density)
+    q0 = np.asarray(initial_velocity, dtype=float)
+    common = dict(width=width, height=height, density=density, edge_from=edge_from, edge_to=edge_to, medium=medium,
+                  initial_velocity=initial_velocity, dt=dt)
+    qn = np.array([float(viscous_rigid_block_velocity_discrete(time, dof=d, **common)) for d in ("vx", "vy", "w")])
+    return 0.5 * (q0 @ m @ q0 - qn @ m @ qn)
+
+
+def viscous_rigid_block_lag_error_bound(*, width, height, density, edge_from, edge_to, medium, initial_velocity,
+                                        dof, dt, input_velocity=None):
+    """Bound on max_n |discrete - continuum| of velocity component dof (viscous_rigid_block_velocity
+    against its _discrete recurrence), relative to max_t |continuum|: the error of the lagged
+    velocity.
+
+    With A = V diag(lambda) V^-1 and c = V^-1 (q0 - q_s), both are sums over the modes of
+    V_ki c_i times e^{-lambda_i t} or (1 - x_i)^n, x_i = lambda_i dt < 1, t = n dt. Since
+    (1 - x)^n = e^{-s} e^{-s g}, s = n x, g = -ln(1 - x) / x - 1 = x / 2 + x^2 / 3 + ..., the
+    difference e^{-s} (1 - e^{-s g}) <= s e^{-s} g <= g / e; so |error_k| <= sum_i |V_ki c_i| g_i / e,
+    first order in dt. The maximum of |q_k| is taken over 20 000 points of the first 10 slowest
+    time constants (the continuum decays monotonically past its extremes there)."""
+    a, q0, qs = _viscous_block_system(width, height, density, edge_from, edge_to, medium, initial_velocity,
+                                      input_velocity)
+    rates, vectors = np.linalg.eig(a)
+    rates, vectors = rates.real, vectors.real
+    x = rates * dt
+    if np.any(x >= 1.0):
+        raise ValueError(f"lambda dt = {x.max()} >= 1: the recurrence oscillates, the bound does not hold")
+    g = np.where(x > 0.0, -np.log1p(-x) / np.where(x > 0.0, x, 1.0) - 1.0, 0.0)
+    k = _DOF[dof]
+    modal = np.abs(vectors[k, :] * np.linalg.solve(vectors, q0 - qs))
+    slowest = np.min(rates[rates > 0.0])
+    t = np.linspace(0.0, 10.0 / slowest, 20001)
+    peak = np.max(np.abs(viscous_rigid_block_velocity(t, width=width, height=height, density=density,
+                                                      edge_from=edge_from, edge_to=edge_to, medium=medium,
+                                                      initial_velocity=initial_velocity, dof=dof,
+                                                      input_velocity=input_velocity)))
+    return float(np.sum(modal * g) / math.e / peak)
+
+
+def viscous_rigid_block_step_limit(*, width, height, density, edge_from, edge_to, medium, joint_stiffness, frac):
+    """The step limit the solver puts on a free rigid block with a viscous edge (as documented for
+    rigidDashpotTimeStep): the lagged-velocity stability condition (w dt)^2 + 2 c dt / m < 4 of a
+    mass m on a spring k and a dashpot c, dt < 4 m / (c + sqrt(c^2 + 4 k m)), taken for translation
+    and rotation apart and times frac:
+
+        translation  m = rho W H,  c = max(Zn, Zs) L,  k = k_j 2 R,
+        rotation     I = m (W^2 + H^2) / 12,  c = max(Zn, Zs) L (ra^2 + ra . rb + rb^2) / 3 (the
+                     integral of max(Zn, Zs) |r|^2 along the edge),  k = k_j 2 R R^2,
+
+    k_j the largest joint stiffness (kn or ks) and R = sqrt(W^2 + H^2) / 2 the block's bounding
+    radius about its centroid. The smaller of the two, times frac."""
+    zn, zs = medium_impedances(**medium)
+    z = max(zn, zs)
+    ra, rb = np.asarray(edge_from, dtype=float), np.asarray(edge_to, dtype=float)
+    length = float(np.linalg.norm(rb - ra))
+    m = density * width * height
+    inertia = m * (width ** 2 + height ** 2) / 12.0
+    radius = 0.5 * math.hypot(width, height)
+    k = joint_stiffness * 2.0 * radius
+
+    def limit(mass, dashpot, stiffness):
+        return 4.0 * mass / (dashpot + math.sqrt(dashpot * dashpot + 4.0 * stiffness * mass))
+
+    translation = limit(m, z * length, k)
+    rotation = limit(inertia, z * length * float(ra @ ra + ra @ rb + rb @ rb) / 3.0, k * radius * radius)
+    return frac * min(translation, rotation)
