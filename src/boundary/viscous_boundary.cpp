@@ -1,6 +1,7 @@
 #include "boundary/viscous_boundary.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -58,32 +59,36 @@ void applyRigidViscousBoundaries(Model& m) {
 
 double rigidDashpotTimeStep(const Model& m, double frac) {
   const Blocks& bl = m.blocks;
-  std::vector<double> translation(bl.size(), 0.0), rotation(bl.size(), 0.0);
+  // Per block, the dashpots' matrix on the translation (xx, xy, yy) and on the rotation (ww).
+  std::vector<std::array<double, 4>> c(bl.size(), std::array<double, 4>{});
   for (const RigidViscousEdge& e : m.rigidViscousEdges) {
-    const Vec2 c = bl.centroid[e.block], pa = m.vertices.geometry[e.from].position, pb = m.vertices.geometry[e.to].position;
-    const double z = std::max(e.normalImpedance, e.shearImpedance), length = norm(pb - pa);
-    translation[e.block] += z * length;
-    // The integral of z |r|^2 over the edge bounds its dashpots' resistance to rotation.
-    const Vec2 ra = pa - c, rb = pb - c;
-    rotation[e.block] += z * length * (dot(ra, ra) + dot(ra, rb) + dot(rb, rb)) / 3.0;
+    const Vec2 centre = bl.centroid[e.block], pa = m.vertices.geometry[e.from].position, pb = m.vertices.geometry[e.to].position;
+    const Vec2 d = pb - pa;
+    const double length = norm(d);
+    const Vec2 t = (1.0 / length) * d, n{t.y, -t.x};
+    const double zn = e.normalImpedance, zs = e.shearImpedance;
+    std::array<double, 4>& k = c[e.block];
+    k[0] += length * (zn * n.x * n.x + zs * t.x * t.x);
+    k[1] += length * (zn * n.x * n.y + zs * t.x * t.y);
+    k[2] += length * (zn * n.y * n.y + zs * t.y * t.y);
+    // The integral of Zn (r x n)^2 + Zs (r x t)^2 along the edge, r x n and r x t linear in it.
+    auto squared = [&](double a, double b) { return length * (a * a + a * b + b * b) / 3.0; };
+    const Vec2 ra = pa - centre, rb = pb - centre;
+    k[3] += zn * squared(cross(ra, n), cross(rb, n)) + zs * squared(cross(ra, t), cross(rb, t));
   }
   double jointStiffness = 0.0;
   for (const JointMaterial& j : m.jointMaterials) jointStiffness = std::max(jointStiffness, std::max(j.kn, j.ks));
   double step = std::numeric_limits<double>::infinity();
-  // FRAC is the margin of the spring estimate (1.3-28), not of the dashpot's exact condition: the
-  // spring enters as k / FRAC^2, so that the limit is FRAC 2 sqrt(m / k) without a dashpot and
-  // tends to the dashpot's own 2 m / c when it dominates.
-  auto limit = [&](double mass, double dashpot, double stiffness) {
-    const double spring = stiffness / (frac * frac);
-    if (dashpot > 0.0) step = std::min(step, 4.0 * mass / (dashpot + std::sqrt(dashpot * dashpot + 4.0 * spring * mass)));
-  };
   for (int b = 0; b < bl.size(); ++b) {
-    if (!bl.movesFreely(b)) continue;
-    // Joint springs along the block's edges: kn l_typ (1.3-28) with l_typ no longer than the
-    // block's diameter, and R^2 times that in rotation about a centroid at most R away.
-    const double k = jointStiffness * 2.0 * bl.boundingRadius[b];
-    limit(bl.mass[b], translation[b], k);
-    limit(bl.inertia[b], rotation[b], k * bl.boundingRadius[b] * bl.boundingRadius[b]);
+    const std::array<double, 4>& k = c[b];
+    if (!bl.movesFreely(b) || k[0] + k[2] + k[3] == 0.0) continue;
+    // The edges couple translation and rotation: the fastest decay rate of M^-1 C is at most the
+    // sum of the rates of its two diagonal blocks (C positive semi-definite). The joint springs as
+    // in 1.3-28: kn l_typ with l_typ no longer than the block's diameter, over the mass.
+    const double mean = 0.5 * (k[0] + k[2]), spread = std::hypot(0.5 * (k[0] - k[2]), k[1]);
+    const double rate = (mean + spread) / bl.mass[b] + k[3] / bl.inertia[b];
+    const double spring = jointStiffness * 2.0 * bl.boundingRadius[b] / bl.mass[b];
+    step = std::min(step, frac * 4.0 / (rate + std::sqrt(rate * rate + 4.0 * spring)));
   }
   return step;
 }

@@ -16,10 +16,11 @@ void applyViscousBoundaries(Model& model);
 // blocks.dashpotForce/Moment; the incoming wave's constant traction to blocks.boundaryForce/Moment.
 void applyRigidViscousBoundaries(Model& model);
 
-// The largest stable step of rigid blocks with viscous edges, as dashpotTimeStep with the block's
-// mass (inertia), the dashpot's resistance to translation (rotation) and the joint stiffness
-// of the rigid-block step (1.3-28) over FRAC^2: FRAC 2 sqrt(m / k) without dashpots, 2 m / c when
-// they dominate. Infinite without such edges.
+// The largest stable step of rigid blocks with viscous edges, times FRAC as the rigid-block step
+// of 1.3-28 is: the condition of dashpotTimeStep, (w dt)^2 + 2 lambda dt < 4, with w^2 the joint
+// springs' k / m of 1.3-28 and lambda = c_t / m + c_r / I, a bound on the fastest decay rate of the
+// edges' dashpots on the block's coupled translation and rotation (c_t the largest eigenvalue of
+// their matrix on the translation, c_r their entry on the rotation). Infinite without such edges.
 double rigidDashpotTimeStep(const Model& model, double frac);
 
 // The largest stable step of the gridpoints that dashpots act on (viscous edges and the side

@@ -652,17 +652,36 @@ def test_viscous_rigid_block_under_an_incident_wave_tends_to_twice_its_velocity(
 
 @pytest.mark.requirements("REQ-QA-003", "REQ-BOUNDARY-005")
 def test_viscous_rigid_block_step_limit_at_known_values():
-    # Soft joint (k = 0): FRAC min(2 m / c_t, 2 I / c_r), c_t = ZN L = 2 ZN, c_r = ZN L (L^2/12 + H^2/4) = 7 ZN / 6.
-    no_joint = rb.viscous_rigid_block_step_limit(joint_stiffness=0.0, frac=1.0, **VISCOUS_BLOCK)
-    assert no_joint == pytest.approx(min(2 * 5000.0 / (2 * ZN), 2 * (5000.0 * 5 / 12) / (7 * ZN / 6)), rel=1e-14, abs=0)
-    assert no_joint == pytest.approx(2 * (5000.0 * 5 / 12) / (7 * ZN / 6), rel=1e-14, abs=0)
-    # No dashpot beside a joint k: the undamped 2 sqrt(m / k) of 4 m / sqrt(4 k m).
-    c_r, inertia, radius = 7 * ZN / 6, 5000.0 * 5 / 12, math.sqrt(1.25)
-    k = 1e10 * 2 * radius
-    rotation = 4 * inertia / (c_r + math.sqrt(c_r ** 2 + 4 * k * radius ** 2 * inertia))
-    translation = 4 * 5000.0 / (2 * ZN + math.sqrt(4 * ZN ** 2 + 4 * k * 5000.0))
+    # Soft joint (k = 0): FRAC 2 / lambda, lambda = c_t / m + c_r / I. The bottom edge (L = 2, at
+    # H / 2 = 0.5 below the centroid): its translation matrix diag(ZS L, ZN L), largest ZN L = 2 ZN;
+    # its rotation entry ZN L^3 / 12 + ZS L H^2 / 4 = 2 ZN / 3 + ZS / 2; m = 5000, I = 5000 x 5 / 12.
+    inertia = 5000.0 * 5 / 12
+    rate = 2 * ZN / 5000.0 + (2 * ZN / 3 + ZS / 2) / inertia
+    assert rb.viscous_rigid_block_step_limit(joint_stiffness=0.0, frac=1.0, **VISCOUS_BLOCK) == \
+        pytest.approx(2.0 / rate, rel=1e-14, abs=0)
+    # No dashpot rate beside a joint k: the undamped 2 sqrt(m / k) of 4 / sqrt(4 k / m), times FRAC.
+    k = 1e10 * 2 * math.sqrt(1.25)
     assert rb.viscous_rigid_block_step_limit(joint_stiffness=1e10, frac=0.1, **VISCOUS_BLOCK) == \
-        pytest.approx(0.1 * min(rotation, translation), rel=1e-14, abs=0)
+        pytest.approx(0.1 * 4.0 / (rate + math.sqrt(rate ** 2 + 4 * k / 5000.0)), rel=1e-14, abs=0)
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-BOUNDARY-005")
+@pytest.mark.parametrize("poisson", [0.25, 0.0, 0.45])
+def test_viscous_rigid_block_step_limit_bounds_the_fastest_coupled_mode(poisson):
+    # The lagged recurrence q+ = (I - dt A) q is stable while dt < 2 / lambda_max(A = M^-1 C); the
+    # limit at FRAC = 1 with soft joints must not exceed it, also where the edge couples sliding and
+    # spin strongly (nu = 0: Zs close to Zn), where limits of translation and rotation taken apart
+    # exceeded it by 12 %.
+    medium = dict(VISCOUS_MEDIUM, poisson=poisson)
+    zn, zs = rb.medium_impedances(**medium)
+    mass = rb.rectangle_mass_matrix(width=2.0, height=1.0, density=2500.0)
+    dashpots = rb.rigid_edge_dashpot_matrix(edge_from=(-1.0, -0.5), edge_to=(1.0, -0.5), centroid=(0.0, 0.0),
+                                            normal_impedance=zn, shear_impedance=zs)
+    fastest = max(np.linalg.eigvals(np.linalg.solve(mass, dashpots)).real)
+    limit = rb.viscous_rigid_block_step_limit(joint_stiffness=0.0, frac=1.0, **dict(VISCOUS_BLOCK, medium=medium))
+    assert limit <= 2.0 / fastest
+    # ... and is not far below it: the bound is the sum of two rates of which one dominates.
+    assert limit >= 0.5 * 2.0 / fastest
 
 
 @pytest.mark.requirements("REQ-QA-003", "REQ-BOUNDARY-005")

@@ -338,6 +338,7 @@ material = "halfspace"
 """
 M_LAYER = constrained_modulus(YOUNG, POISSON)
 Z_LAYER = math.sqrt(RHO * M_LAYER)  # rho c_p, the larger of the two impedances
+ZS_LAYER = math.sqrt(RHO * YOUNG / (2.0 * (1.0 + POISSON)))  # rho c_s
 Z_HALF_SPACE = math.sqrt(RHO * constrained_modulus(100 * YOUNG, POISSON))
 
 
@@ -449,15 +450,13 @@ def test_a_rigid_blocks_viscous_edge_limits_the_step_as_a_dashpot_on_its_transla
     frac, kn = 0.1, 1e10
     mass, radius = RHO * 2.0, math.hypot(1.0, 0.5)
     inertia = mass * (2.0 ** 2 + 1.0 ** 2) / 12.0
-    # The edge from (2, 1) to (0, 1), at ra = (1, 0.5), rb = (-1, 0.5) from the centroid: its
-    # dashpots resist translation with Z l and rotation with Z l (ra.ra + ra.rb + rb.rb) / 3.
-    translation = Z_LAYER * 2.0
-    rotation = Z_LAYER * 2.0 * (1.25 - 0.75 + 1.25) / 3.0
-    stiffness = kn * 2.0 * radius  # joint springs along the block, l_typ at most its diameter
+    # The edge from (2, 1) to (0, 1), 0.5 above the centroid, l = 2: its dashpots' matrix on the
+    # translation is diag(Zs l, Zn l), on the rotation Zn l^3 / 12 + Zs l 0.5^2; the decay rate is
+    # bounded by the larger translation entry over m plus the rotation entry over I.
+    rate = Z_LAYER * 2.0 / mass + (Z_LAYER * 8.0 / 12.0 + ZS_LAYER * 2.0 * 0.25) / inertia
+    spring = kn * 2.0 * radius / mass  # joint springs along the block, l_typ at most its diameter
     expected = {"rigid-block-motion": frac * 2.0 * math.sqrt(mass / (kn * 2.0)),  # 1.3-28, longest edge 2 m
-                # FRAC on the springs only: k / FRAC^2.
-                "boundaries": min(dashpot_step(mass, stiffness / frac ** 2, translation),
-                                  dashpot_step(inertia, stiffness * radius ** 2 / frac ** 2, rotation))}
+                "boundaries": frac * 4.0 / (rate + math.sqrt(rate ** 2 + 4.0 * spring))}
     assert results["run"]["step_limits"] == pytest.approx(expected, rel=1e-12, abs=0)
     assert results["run"]["dt"] == pytest.approx(min(expected.values()), rel=1e-12, abs=0)
 

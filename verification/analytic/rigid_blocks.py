@@ -711,28 +711,23 @@ def viscous_rigid_block_lag_error_bound(*, width, height, density, edge_from, ed
 
 def viscous_rigid_block_step_limit(*, width, height, density, edge_from, edge_to, medium, joint_stiffness, frac):
     """The step limit the solver puts on a free rigid block with a viscous edge (as documented for
-    rigidDashpotTimeStep): the lagged-velocity stability condition (w dt)^2 + 2 c dt / m < 4 of a
-    mass m on a spring k and a dashpot c, dt < 4 m / (c + sqrt(c^2 + 4 k m)), taken for translation
-    and rotation apart and times frac:
+    rigidDashpotTimeStep): the lagged-velocity stability condition (w dt)^2 + 2 lambda dt < 4 of a
+    mode of frequency w and decay rate lambda, dt < 4 / (lambda + sqrt(lambda^2 + 4 w^2)), times frac,
+    with
 
-        translation  m = rho W H,  c = max(Zn, Zs) L,  k = k_j 2 R,
-        rotation     I = m (W^2 + H^2) / 12,  c = max(Zn, Zs) L (ra^2 + ra . rb + rb^2) / 3 (the
-                     integral of max(Zn, Zs) |r|^2 along the edge),  k = k_j 2 R R^2,
+        lambda = c_t / m + c_r / I,   c_t = the largest eigenvalue of L (Zn n n + Zs t t),
+                 c_r = the integral of Zn (r x n)^2 + Zs (r x t)^2 along the edge (its rotation entry),
+        w^2 = k_j 2 R / m,   m = rho W H,  I = m (W^2 + H^2) / 12,
 
     k_j the largest joint stiffness (kn or ks) and R = sqrt(W^2 + H^2) / 2 the block's bounding
-    radius about its centroid. The smaller of the two, times frac."""
+    radius about its centroid: lambda bounds the fastest decay rate of the coupled translation and
+    rotation (the largest eigenvalue of a positive semi-definite block matrix is at most the sum of
+    its diagonal blocks'), w^2 is the springs' estimate of 1.3-28."""
     zn, zs = medium_impedances(**medium)
-    z = max(zn, zs)
-    ra, rb = np.asarray(edge_from, dtype=float), np.asarray(edge_to, dtype=float)
-    length = float(np.linalg.norm(rb - ra))
     m = density * width * height
     inertia = m * (width ** 2 + height ** 2) / 12.0
-    radius = 0.5 * math.hypot(width, height)
-    k = joint_stiffness * 2.0 * radius
-
-    def limit(mass, dashpot, stiffness):
-        return 4.0 * mass / (dashpot + math.sqrt(dashpot * dashpot + 4.0 * stiffness * mass))
-
-    translation = limit(m, z * length, k)
-    rotation = limit(inertia, z * length * float(ra @ ra + ra @ rb + rb @ rb) / 3.0, k * radius * radius)
-    return frac * min(translation, rotation)
+    k = joint_stiffness * math.hypot(width, height)  # k_j 2 R
+    c = rigid_edge_dashpot_matrix(edge_from=edge_from, edge_to=edge_to, centroid=(0.0, 0.0), normal_impedance=zn,
+                                  shear_impedance=zs)
+    rate = float(np.linalg.eigvalsh(c[:2, :2]).max()) / m + float(c[2, 2]) / inertia
+    return frac * 4.0 / (rate + math.sqrt(rate * rate + 4.0 * k / m))
