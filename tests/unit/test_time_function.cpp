@@ -34,3 +34,35 @@ TEST(TimeFunction, EachKindAtKnownTimes) {
   EXPECT_DOUBLE_EQ(table(-1.0), 0.0);  // held at the ends
   EXPECT_DOUBLE_EQ(table(9.0), -2.0);
 }
+
+TEST(TimeFunction, AnIntegratedTableIsItsIntegralFromZeroAtKnownTimes) {
+  VDEC_REQUIREMENTS("REQ-BOUNDARY-002");
+  // An acceleration record: 2 m/s^2 rising from 0 at t = 0 to 2 at t = 1, falling to -2 at t = 3.
+  TimeFunction record;
+  record.kind = TimeFunction::Kind::Table;
+  record.t = {0.0, 1.0, 3.0};
+  record.f = {0.0, 2.0, -2.0};
+  record.integrate();
+  EXPECT_DOUBLE_EQ(record(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(record(0.5), 0.25);      // the integral of 2 t: t^2
+  EXPECT_DOUBLE_EQ(record(1.0), 1.0);
+  EXPECT_DOUBLE_EQ(record(2.0), 2.0);       // + the triangle 1 x 2 / 2 from 1 to 2
+  EXPECT_DOUBLE_EQ(record(3.0), 1.0);       // and back down by as much
+  EXPECT_DOUBLE_EQ(record(4.0), -1.0);      // -2 held after the last row
+  // A record starting before 0 is integrated from 0 all the same: 1 m/s^2 throughout.
+  TimeFunction early;
+  early.kind = TimeFunction::Kind::Table;
+  early.t = {-2.0, 5.0};
+  early.f = {1.0, 1.0};
+  early.integrate();
+  EXPECT_DOUBLE_EQ(early(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(early(3.0), 3.0);
+  // One starting after 0: its first value held from 0.
+  TimeFunction late;
+  late.kind = TimeFunction::Kind::Table;
+  late.t = {1.0, 2.0};
+  late.f = {3.0, 3.0};
+  late.integrate();
+  EXPECT_DOUBLE_EQ(late(0.5), 1.5);
+  EXPECT_DOUBLE_EQ(late(2.0), 6.0);
+}
