@@ -171,6 +171,7 @@ BoundaryDefinition readBoundary(TableReader& r) {
     if (d.freeField && !r.has("x"))
       r.fail("free_field", "needs x = [x0, x0]: the vertical side beside which the column runs");
     d.material = r.string("material", "");
+    if (r.has("material") && d.material.empty()) r.fail("material", "is empty: name a [[block_material]], or leave the key out for the block's own");
     if (r.has("input_velocity")) d.inputVelocity = r.vec2("input_velocity");
     if (r.has("history")) {
       if (!r.has("input_velocity")) r.fail("history", "scales the input_velocity; give input_velocity");

@@ -12,6 +12,7 @@
 #include "boundary/free_field.hpp"
 #include "boundary/initial_wave.hpp"
 #include "core/errors.hpp"
+#include "core/shown.hpp"
 #include "core/interrupt.hpp"
 #include "motion/rigid_motion.hpp"
 #include "zone/cst.hpp"
@@ -267,18 +268,22 @@ void Cycle::checkEnergy() {
     std::ostringstream s;
     s << "numerical instability at cycle " << model_.cycle << ", time " << model_.time << " s: the mechanical "
       << "energy (kinetic " << energy_.kinetic() << " + strain " << energy_.strain() << " J/m) "
-      << (std::isfinite(mechanical) ? "exceeds the energy supplied (" + std::to_string(energy_.supplied()) +
-                                          " J/m) by more than " + std::to_string(kEnergyExcessLimit) +
+      << (std::isfinite(mechanical) ? "exceeds the energy supplied (" + shown(energy_.supplied()) +
+                                          " J/m) by more than " + shown(kEnergyExcessLimit) +
                                           " times the largest energy supplied so far"
                                     : "is not a number")
       << ". The time step " << dt_ << " s" << (settings_.localDamping > 0.0 ? " (reduced for local damping)" : "")
       << " is above the stability limit of the stiffest ";
+    const bool dashpots = !model_.viscousEdges.empty() || !model_.rigidViscousEdges.empty() || !model_.freeFields.empty();
     if (hasZones_)
-      s << "zone or contact: lower solver.zone_fraction (now " << settings_.zoneFraction << "; 1, the estimate of "
-        << "1.3-25, is the usual value) or solver.frac (now " << settings_.frac << ")";
+      s << "zone or contact" << (dashpots ? " or dashpot" : "") << ": lower solver.zone_fraction (now "
+        << settings_.zoneFraction << "; 1, the estimate of 1.3-25, is the usual value) or solver.frac (now "
+        << settings_.frac << ")";
     else
-      s << "contact: lower solver.frac (now " << settings_.frac << "; 0.1 is the usual value)";
-    s << ", or check for a joint stiffness far above the others.";
+      s << "contact" << (dashpots ? " or dashpot" : "") << ": lower solver.frac (now " << settings_.frac
+        << "; 0.1 is the usual value)";
+    s << ", or check for a joint stiffness far above the others"
+      << (dashpots ? " (run.step_limits shows which limit set the step)" : "") << ".";
     throw InstabilityError(s.str());
   }
 }
