@@ -160,7 +160,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                  {"damping_dissipation", report.energy.dampingDissipation},
                  {"largest_excess", report.energy.largestExcess}};
   for (const BoundaryCondition& b : m.boundaryConditions)
-    if (!b.dashpots.empty() || !b.rigidDashpots.empty()) j["energy"]["boundary_dissipation"] = report.energy.boundaryDissipation;
+    if (!b.dashpots.empty() || !b.rigidDashpots.empty() || !b.freeField.empty())
+      j["energy"]["boundary_dissipation"] = report.energy.boundaryDissipation;
   if (!report.phases.empty()) {
     j["energy"]["removed"] = report.energy.removed;
     for (const Phase& phase : scene.settings.phases)

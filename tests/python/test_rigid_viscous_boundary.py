@@ -72,6 +72,15 @@ def test_a_rigid_viscous_boundary_that_selects_no_edge_is_a_scene_error(tmp_path
 @pytest.mark.requirements("REQ-BOUNDARY-005", "REQ-QA-007")
 def test_a_rigid_viscous_boundary_needs_the_wave_speeds_of_some_material(tmp_path):
     # Without material = "...", the block's own material, which has no elastic constants here.
-    done, _ = run(tmp_path, 'boundary[0].material=""')
+    text = SCENE.read_text()
+    assert 'material = "soil"\n' in text
+    scene = tmp_path / "scene.toml"
+    scene.write_text(text.replace('material = "soil"\n', "", 1))
+    done = subprocess.run([VDEC, "run", str(scene), "--out", str(tmp_path / "out")], capture_output=True, text=True,
+                          timeout=120)
     assert done.returncode == 3, done.stderr
     assert "key 'boundary[0].block'" in done.stderr and "name the medium beyond the boundary" in done.stderr, done.stderr
+    # An empty name is no name: refused rather than taken for the block's own.
+    done, _ = run(tmp_path, 'boundary[0].material=""')
+    assert done.returncode == 3, done.stderr
+    assert "key 'boundary[0].material'" in done.stderr and "is empty" in done.stderr, done.stderr
