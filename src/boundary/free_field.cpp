@@ -44,27 +44,36 @@ void addColumnTraction(const FreeFieldColumn& c, const FreeFieldEdge& edge, doub
   g.tractionForce[edge.to] += toTo;
 }
 
-// The column's nodal forces from its element stresses at time t (with the viscous stress of
-// stiffness-proportional damping, beta D de/dt) and its base's, then its motion to t + dt/2.
-void stepColumn(FreeFieldColumn& c, const std::vector<BlockMaterial>& materials, double time, double dt, double alpha,
-                double beta, const std::vector<TimeFunction>& functions, std::vector<Vec2>& force) {
+// The column's element stresses at time t, incremented from the node velocities of the half
+// step just ended (none at the model's first step, as for the zones), and the nodal forces of
+// those stresses with the viscous stress of stiffness-proportional damping, beta D de/dt.
+void formColumnForces(FreeFieldColumn& c, const std::vector<BlockMaterial>& materials, double strainStep, double beta,
+                      std::vector<Vec2>& force) {
   const std::size_t nodes = c.nodeY.size();
   force.assign(nodes, Vec2{});
   for (std::size_t e = 0; e + 1 < nodes; ++e) {
     const double h = c.nodeY[e + 1] - c.nodeY[e];
     const Vec2 dv = c.nodeVelocity[e + 1] - c.nodeVelocity[e];
     const Moduli k = moduliOf(materials[c.elementMaterial[e]]);
+    c.sxx[e] += k.lame * dv.y / h * strainStep;
+    c.syy[e] += k.constrained * dv.y / h * strainStep;
+    c.sxy[e] += k.shear * dv.x / h * strainStep;
     // An element in tension pulls its two nodes together.
     const Vec2 stress{c.sxy[e] + beta * k.shear * dv.x / h, c.syy[e] + beta * k.constrained * dv.y / h};
     force[e] += stress;
     force[e + 1] -= stress;
   }
-  // The base: dashpots of the medium below and the incident wave's stress 2 rho C v_in.
+}
+
+// The column's base, dashpots of the medium below and the incident wave's stress 2 rho C v_in,
+// then its motion to t + dt/2.
+void moveColumn(FreeFieldColumn& c, double time, double dt, double alpha, const std::vector<TimeFunction>& functions,
+                std::vector<Vec2>& force) {
   const double f = c.history < 0 ? 1.0 : functions[c.history](time - c.timeOrigin);
   const Vec2 v0 = c.nodeVelocity.front(), vin = f * c.inputVelocity;
   force.front() += Vec2{c.baseShearImpedance * (2.0 * vin.x - v0.x), c.baseNormalImpedance * (2.0 * vin.y - v0.y)};
   const double lose = 1.0 - 0.5 * alpha * dt, keep = 1.0 / (1.0 + 0.5 * alpha * dt);
-  for (std::size_t j = 0; j < nodes; ++j)
+  for (std::size_t j = 0; j < c.nodeY.size(); ++j)
     c.nodeVelocity[j] = keep * (lose * c.nodeVelocity[j] + (dt / c.nodeMass[j]) * force[j]);
 }
 
@@ -82,10 +91,7 @@ void keepStaticReactions(const Model& m, FreeFieldColumn& c) {
   // The loads in force now, at the present time: those of the conditions the phase keeps or adds.
   std::vector<Vec2> load(g.size());
   for (const LoadedEdge& e : m.loadedEdges) {
-    const Vec2 d = g.position[e.to] - g.position[e.from];
-    const Vec2 nL{d.y, -d.x};
-    const double scale = e.history < 0 ? 1.0 : m.timeFunctions[e.history](m.time - e.timeOrigin);
-    const Vec2 traction = scale * Vec2{e.sxx * nL.x + e.sxy * nL.y, e.sxy * nL.x + e.syy * nL.y};
+    const Vec2 traction = m.loadedEdgeForce(e);
     load[e.from] += 0.5 * traction;
     load[e.to] += 0.5 * traction;
   }
@@ -107,18 +113,7 @@ void stepFreeFields(Model& m, double dt, double alpha, double beta) {
   // Kept from step to step, so that the running model allocates nothing here.
   static thread_local std::vector<Vec2> force;
   for (FreeFieldColumn& c : m.freeFields) {
-    // The column's stress at time t from the velocities of the half step just ended, as the
-    // zones' (the model's first step has no motion behind it).
-    const double strainStep = m.cycle == 0 ? 0.0 : dt;
-    const std::size_t nodes = c.nodeY.size();
-    for (std::size_t e = 0; e + 1 < nodes; ++e) {
-      const double h = c.nodeY[e + 1] - c.nodeY[e];
-      const Vec2 dv = c.nodeVelocity[e + 1] - c.nodeVelocity[e];
-      const Moduli k = moduliOf(m.blockMaterials[c.elementMaterial[e]]);
-      c.sxx[e] += k.lame * dv.y / h * strainStep;
-      c.syy[e] += k.constrained * dv.y / h * strainStep;
-      c.sxy[e] += k.shear * dv.x / h * strainStep;
-    }
+    formColumnForces(c, m.blockMaterials, m.cycle == 0 ? 0.0 : dt, beta, force);
     for (const FreeFieldEdge& edge : c.edges) {
       const Vec2 d = g.position[edge.to] - g.position[edge.from];
       const double length = norm(d);
@@ -129,12 +124,12 @@ void stepFreeFields(Model& m, double dt, double alpha, double beta) {
         // velocity dissipates (as a viscous boundary's), the column's part is a load.
         const int i = k == 0 ? edge.from : edge.to;
         const Vec2 v = g.velocity[i], vf = columnVelocity(c, edge, k);
-        g.dashpotForce[i] -= (0.5 * length) * (edge.normalImpedance * dot(v, n) * n + edge.shearImpedance * dot(v, t) * t);
-        g.tractionForce[i] += (0.5 * length) * (edge.normalImpedance * dot(vf, n) * n + edge.shearImpedance * dot(vf, t) * t);
+        g.dashpotForce[i] -= (0.5 * length) * dashpotTraction(edge.normalImpedance, edge.shearImpedance, v, n, t);
+        g.tractionForce[i] += (0.5 * length) * dashpotTraction(edge.normalImpedance, edge.shearImpedance, vf, n, t);
       }
     }
     for (std::size_t k = 0; k < c.reaction.size(); ++k) g.tractionForce[c.reactionGridpoint[k]] += c.reaction[k];
-    stepColumn(c, m.blockMaterials, m.time, dt, alpha, beta, m.timeFunctions, force);
+    moveColumn(c, m.time, dt, alpha, m.timeFunctions, force);
   }
 }
 

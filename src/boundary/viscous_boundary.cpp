@@ -15,7 +15,7 @@ void applyViscousBoundaries(Model& m) {
     const Vec2 t = (1.0 / length) * d, n{t.y, -t.x};  // n outward: the block lies to the left of from -> to
     for (const int i : {e.from, e.to}) {
       const Vec2 v = g.velocity[i];
-      g.dashpotForce[i] -= (0.5 * length) * (e.normalImpedance * dot(v, n) * n + e.shearImpedance * dot(v, t) * t);
+      g.dashpotForce[i] -= (0.5 * length) * dashpotTraction(e.normalImpedance, e.shearImpedance, v, n, t);
     }
     if (e.inputVelocity.x == 0.0 && e.inputVelocity.y == 0.0) continue;
     // An incident wave of particle velocity v_in: the stress 2 rho C v_in (Joyner and Chen 1975)
@@ -23,7 +23,7 @@ void applyViscousBoundaries(Model& m) {
     // is a load: its work is external work, as a boundary stress's is.
     const double f = e.history < 0 ? 1.0 : m.timeFunctions[e.history](m.time - e.timeOrigin);
     const Vec2 vin = f * e.inputVelocity;
-    const Vec2 force = 2.0 * length * (e.normalImpedance * dot(vin, n) * n + e.shearImpedance * dot(vin, t) * t);
+    const Vec2 force = 2.0 * length * dashpotTraction(e.normalImpedance, e.shearImpedance, vin, n, t);
     g.tractionForce[e.from] += 0.5 * force;
     g.tractionForce[e.to] += 0.5 * force;
   }
@@ -42,7 +42,7 @@ void applyRigidViscousBoundaries(Model& m) {
     auto traction = [&](Vec2 p) {
       const Vec2 r = p - c;
       const Vec2 u = v + w * Vec2{-r.y, r.x};
-      return -1.0 * (e.normalImpedance * dot(u, n) * n + e.shearImpedance * dot(u, t) * t);
+      return -1.0 * dashpotTraction(e.normalImpedance, e.shearImpedance, u, n, t);
     };
     const Vec2 mid = 0.5 * (pa + pb);
     const Vec2 ta = traction(pa), tm = traction(mid), tb = traction(pb);
@@ -51,7 +51,7 @@ void applyRigidViscousBoundaries(Model& m) {
     if (e.inputVelocity.x == 0.0 && e.inputVelocity.y == 0.0) continue;
     const double f = e.history < 0 ? 1.0 : m.timeFunctions[e.history](m.time - e.timeOrigin);
     const Vec2 vin = f * e.inputVelocity;
-    const Vec2 force = 2.0 * length * (e.normalImpedance * dot(vin, n) * n + e.shearImpedance * dot(vin, t) * t);
+    const Vec2 force = 2.0 * length * dashpotTraction(e.normalImpedance, e.shearImpedance, vin, n, t);
     bl.boundaryForce[b] += force;
     bl.boundaryMoment[b] += cross(mid - c, force);
   }

@@ -215,7 +215,6 @@ struct FreeFieldColumn {
   Vec2 inputVelocity;             // the incident wave at the base, as a viscous boundary's
   int history = -1;
   double timeOrigin = 0.0;
-  double side = 0.0;              // x component of the side's outward normal: -1 left, +1 right
   std::vector<FreeFieldEdge> edges;
   std::vector<int> reactionGridpoint;  // static reactions kept on the side's gridpoints
   std::vector<Vec2> reaction;
@@ -385,6 +384,20 @@ struct Model {
   int jointMaterialFor(int a, int b) const;
   double normalForce(const Contact& c) const { return contactWeight(jointMaterials[c.joint], c) * c.normalStress; }
   double shearForce(const Contact& c) const { return contactWeight(jointMaterials[c.joint], c) * c.shearStress; }
+  // A loaded edge's force now: its stress, times the history at the present time, on the edge's
+  // current outward normal times length, (dy, -dx) of a counter-clockwise edge.
+  Vec2 loadedEdgeForce(const LoadedEdge& e) const {
+    const Vec2 d = gridpoints.position[e.to] - gridpoints.position[e.from];
+    const Vec2 nL{d.y, -d.x};
+    const double scale = e.history < 0 ? 1.0 : timeFunctions[e.history](time - e.timeOrigin);
+    return scale * Vec2{e.sxx * nL.x + e.sxy * nL.y, e.sxy * nL.x + e.syy * nL.y};
+  }
 };
+
+// The dashpot force per unit length of impedances zn (along the normal n) and zs (along the
+// tangent t) on the velocity v: zn (v . n) n + zs (v . t) t (Lysmer and Kuhlemeyer, 1.3-35).
+inline Vec2 dashpotTraction(double zn, double zs, Vec2 v, Vec2 n, Vec2 t) {
+  return zn * dot(v, n) * n + zs * dot(v, t) * t;
+}
 
 }  // namespace vdec

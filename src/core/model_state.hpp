@@ -48,7 +48,7 @@ void visitState(A& a, Zones& z) {
 template <class A>
 void visitState(A& a, FreeFieldColumn& c) {
   a(c.nodeY), a(c.nodeMass), a(c.nodeVelocity), a(c.elementMaterial), a(c.sxx), a(c.syy), a(c.sxy);
-  a(c.baseNormalImpedance), a(c.baseShearImpedance), a(c.inputVelocity), a(c.history), a(c.timeOrigin), a(c.side);
+  a(c.baseNormalImpedance), a(c.baseShearImpedance), a(c.inputVelocity), a(c.history), a(c.timeOrigin);
   a(c.edges), a(c.reactionGridpoint), a(c.reaction), a(c.source);
 }
 template <class A>

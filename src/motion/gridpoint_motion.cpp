@@ -10,11 +10,7 @@ namespace vdec {
 void applyEdgeTractions(Model& m) {
   Gridpoints& g = m.gridpoints;
   for (const LoadedEdge& e : m.loadedEdges) {
-    // Outward normal times length of a counter-clockwise boundary edge: (dy, -dx).
-    const Vec2 d = g.position[e.to] - g.position[e.from];
-    const Vec2 nL{d.y, -d.x};
-    const double scale = e.history < 0 ? 1.0 : m.timeFunctions[e.history](m.time - e.timeOrigin);
-    const Vec2 traction = scale * Vec2{e.sxx * nL.x + e.sxy * nL.y, e.sxy * nL.x + e.syy * nL.y};
+    const Vec2 traction = m.loadedEdgeForce(e);
     g.tractionForce[e.from] += 0.5 * traction;
     g.tractionForce[e.to] += 0.5 * traction;
   }

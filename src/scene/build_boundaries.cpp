@@ -57,6 +57,7 @@ FreeFieldColumn freeFieldColumn(const BoundaryDefinition& d, Model& m, const std
                                 double slack) {
   const Gridpoints& g = m.gridpoints;
   FreeFieldColumn c;
+  double side = 0.0;  // -1: a left side, its edges going down (counter-clockwise); +1: a right side
   for (const Model::BoundaryEdge& be : edges) {
     const Vec2 a = g.initialPosition[be.from], b = g.initialPosition[be.to];
     if (std::abs(b.x - a.x) > slack)
@@ -67,10 +68,10 @@ FreeFieldColumn freeFieldColumn(const BoundaryDefinition& d, Model& m, const std
     if (std::abs(a.x - g.initialPosition[edges.front().from].x) > slack)
       d.origin.fail("x", "selects vertical edges at x = " + shown(g.initialPosition[edges.front().from].x) + " and at x = " +
                              shown(a.x) + ": a free-field column runs beside one straight side; give x = [x0, x0]");
-    const double side = b.y < a.y ? -1.0 : 1.0;  // counter-clockwise: going down on the left side
-    if (c.side != 0.0 && c.side != side)
+    const double edgeSide = b.y < a.y ? -1.0 : 1.0;
+    if (side != 0.0 && side != edgeSide)
       d.origin.fail("x", "selects edges of a left side and of a right side: give one free-field table per side");
-    c.side = side;
+    side = edgeSide;
     const auto [zn, zs] = impedances(m.blockMaterials[m.blocks.material[be.block]]);
     c.edges.push_back({be.from, be.to, zn, zs});
     c.nodeY.insert(c.nodeY.end(), {a.y, b.y});

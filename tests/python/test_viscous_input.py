@@ -96,3 +96,28 @@ def test_an_input_velocity_needs_a_viscous_boundary(tmp_path):
     done, _ = run(tmp_path, scene)
     assert done.returncode == 3, done.stderr
     assert "key 'boundary[1].input_velocity'" in done.stderr and "needs viscous = true" in done.stderr, done.stderr
+
+
+@pytest.mark.requirements("REQ-BOUNDARY-002")
+def test_an_integrated_acceleration_record_enters_as_its_velocity(tmp_path):
+    # A record of constant acceleration, 1 m/s^2 (a table with integrate = true), is the incident
+    # velocity t: the same run, to the last bit, as the linear history of rate 1.
+    record = 'input_velocity = [1.0, 0.0]\nhistory = { kind = "table", file = "accel.csv", integrate = true }'
+    linear = 'input_velocity = [1.0, 0.0]\nhistory = { kind = "linear", rate = 1.0 }'
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    (tmp_path / "a" / "accel.csv").write_text("t,a\n0.0,1.0\n1.0,1.0\n")
+    done_a, results_a = run(tmp_path / "a", COLUMN.format(time=0.03, input=record))
+    done_b, results_b = run(tmp_path / "b", COLUMN.format(time=0.03, input=linear))
+    assert done_a.returncode == 0 and done_b.returncode == 0, done_a.stderr + done_b.stderr
+    top_a, top_b = results_a["histories"]["top"]["value"], results_b["histories"]["top"]["value"]
+    assert max(abs(v) for v in top_a) > 1e-3  # the wave has reached the top (15.8 ms)
+    assert top_a == top_b
+
+
+@pytest.mark.requirements("REQ-BOUNDARY-002", "REQ-QA-007")
+def test_integrate_belongs_to_a_table_history(tmp_path):
+    done, _ = run(tmp_path, COLUMN.format(
+        time=0.001, input='input_velocity = [0.01, 0.0]\nhistory = { kind = "sine", frequency = 40.0, integrate = true }'))
+    assert done.returncode == 3, done.stderr
+    assert "boundary[1].history.integrate" in done.stderr and "unknown key" in done.stderr, done.stderr
