@@ -3,11 +3,13 @@
 // reads or writes lives here; stages own no state of their own beyond scratch buffers.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "boundary/time_function.hpp"
+#include "flow/flow_state.hpp"
 #include "zone/mohr_coulomb.hpp"
 #include "core/vec2.hpp"
 
@@ -49,6 +51,12 @@ struct JointMaterial {
   double friction = 0.0;         // phi, the basic friction angle, rad
   double initialFriction = 0.0;  // phi_eff at the start, rad
   double roughness = 0.0;        // R, m
+  // Fracture flow (1.4-7 to 1.4-9): the hydraulic aperture at zero normal stress, its bounds,
+  // and the permeability of the point-contact law (m^2/(Pa s) per unit thickness).
+  double aperture = 0.0;
+  double residualAperture = 0.0;
+  double maxAperture = INFINITY;
+  double pointPermeability = 0.0;
 };
 
 // Degrees of freedom of a rigid block or gridpoint that are driven (velocity prescribed, zero when
@@ -344,6 +352,7 @@ struct Model {
   std::vector<FreeFieldColumn> freeFields;  // those in force
   std::vector<InitialWave> initialWaves;
   std::vector<TimeFunction> timeFunctions;
+  FlowState flow;  // fluid in the joints, when the scene has a [fluid] table
   // The outline edges of deformable blocks (outer boundaries and holes), each directed with the
   // block on its left: gridpoints from -> to.
   struct BoundaryEdge {

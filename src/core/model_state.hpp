@@ -20,7 +20,16 @@ template <class A>
 void visitState(A& a, JointMaterial& j) {
   a(j.name), a(j.law), a(j.kn), a(j.ks), a(j.tanFriction), a(j.cohesion), a(j.tension), a(j.tanDilation);
   a(j.knCoefficient), a(j.knExponent), a(j.ksCoefficient), a(j.ksExponent), a(j.friction), a(j.initialFriction);
-  a(j.roughness);
+  a(j.roughness), a(j.aperture), a(j.residualAperture), a(j.maxAperture), a(j.pointPermeability);
+}
+template <class A>
+void visitState(A& a, FlowBoundary& b) {
+  a(b.name), a(b.lo), a(b.hi), a(b.inflow), a(b.value), a(b.waterTable), a(b.history), a(b.timeOrigin), a(b.active);
+}
+template <class A>
+void visitState(A& a, FlowState& f) {
+  a(f.present), a(f.on), a(f.fluid), a(f.boundaries), a(f.knots), a(f.sides), a(f.domains), a(f.totals), a(f.subStep);
+  a(f.subSteps), a(f.stiffnessBound);
 }
 template <class A>
 void visitState(A& a, Blocks& b) {
@@ -61,7 +70,7 @@ void visitState(A& a, Model& m) {
   a(m.blockMaterials), a(m.jointMaterials), a(m.blocks), a(m.vertices), a(m.gridpoints), a(m.zones);
   a(m.gridpointZones.start), a(m.gridpointZones.slot), a(m.loadedEdges), a(m.drivenVelocities);
   a(m.boundaryConditions), a(m.viscousEdges), a(m.rigidViscousEdges), a(m.freeFields), a(m.initialWaves);
-  a(m.timeFunctions), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
+  a(m.timeFunctions), a(m.flow), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
   a(m.defaultJoint), a(m.gravity), a(m.roundingLength), a(m.contactTolerance), a(m.time), a(m.cycle);
 }
 

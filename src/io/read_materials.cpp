@@ -50,6 +50,7 @@ JointMaterialDefinition readJointMaterial(TableReader& r) {
                          "'; use coulomb-slip, coulomb-fracture, continuously-yielding or point-contact");
   j.kn = r.positive("kn");
   j.ks = r.positive("ks");
+  readJointFlowKeys(r, j);
   if (j.law == JointLaw::ContinuouslyYielding) {
     readContinuouslyYielding(r, j);
     return d;

@@ -103,6 +103,11 @@ PhaseDefinition readPhase(TableReader& r, std::vector<std::string>& warnings) {
     d.boundaries.push_back(readBoundary(t));
     t.finish();
   }
+  if (r.has("flow")) d.flow = r.boolean("flow", true);
+  for (auto [table, prefix] : r.tables("flow_boundary")) {
+    TableReader t(*table, prefix, r.file());
+    d.flowBoundaries.push_back(readFlowBoundary(t));
+  }
   r.finish();
   return d;
 }

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "contact/contact_geometry.hpp"
+#include "flow/fracture_flow.hpp"
 #include "geometry/zoning.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
@@ -90,6 +91,64 @@ void writeContinuum(nlohmann::json& j, const Model& m) {
   }
   j["zoning"] = quality;
 }
+
+// Fluid in the joints: the domains (at their present centres), the knots (at their present
+// points) and the fluid balance.
+void writeFlow(nlohmann::json& j, const Model& m) {
+  const FlowState& fs = m.flow;
+  std::vector<double> dx, dy, pressure, area, content;
+  std::vector<int> dBlock, fixed, atFloor;
+  int floorCount = 0;
+  for (const FlowDomain& d : fs.domains) {
+    dx.push_back(d.centre.x);
+    dy.push_back(d.centre.y);
+    dBlock.push_back(-1);
+    pressure.push_back(d.pressure);
+    area.push_back(d.area);
+    content.push_back(d.content);
+    fixed.push_back(d.fixed);
+    atFloor.push_back(d.atMinimumArea);
+    floorCount += d.atMinimumArea;
+  }
+  j["domains"] = {{"x0", dx}, {"y0", dy}, {"block", dBlock}, {"pressure", pressure}, {"area", area},
+                  {"content", content}, {"fixed", fixed}, {"at_minimum_area", atFloor}};
+  std::vector<double> kx, ky, aperture, length, flow, conductance;
+  std::vector<int> kBlock, kOther, d0, d1;
+  std::vector<std::string> boundary;
+  for (const FlowKnot& k : fs.knots) {
+    kx.push_back(k.point.x);
+    ky.push_back(k.point.y);
+    kBlock.push_back(k.blockA);
+    kOther.push_back(k.blockB);
+    aperture.push_back(k.aperture);
+    length.push_back(k.length);
+    flow.push_back(k.flow);
+    conductance.push_back(knotConductance(m, k));
+    d0.push_back(k.domain[0]);
+    d1.push_back(k.domain[1]);
+    boundary.push_back(k.boundary >= 0 ? fs.boundaries[k.boundary].name : "");
+  }
+  j["knots"] = {{"x0", kx}, {"y0", ky}, {"block", kBlock}, {"block_b", kOther}, {"aperture", aperture},
+                {"length", length}, {"flow", flow}, {"conductance", conductance}, {"domain_0", d0}, {"domain_1", d1},
+                {"boundary", boundary}};
+  const FlowTotals& t = fs.totals;
+  j["fluid"] = {{"flowing", fs.on},
+                {"domains", fs.domains.size()},
+                {"knots", fs.knots.size()},
+                {"min_domain_area", fs.fluid.minDomainArea},
+                {"domains_at_minimum_area", floorCount},
+                {"sub_step", fs.subStep},
+                {"sub_steps_last_step", fs.subSteps},
+                {"sub_steps_total", t.subSteps},
+                {"balance", {{"inflow", t.inflow},
+                             {"outflow", t.outflow},
+                             {"content", flowContent(m)},
+                             {"initial_content", t.initialContent},
+                             {"created", t.created},
+                             {"removed", t.removed},
+                             {"imbalance", flowImbalance(m)}}}};
+}
+
 
 }  // namespace
 
@@ -226,6 +285,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
   }
   j["contacts"] = contacts;
   if (m.zones.size() > 0) writeContinuum(j, m);
+  if (m.flow.present) writeFlow(j, m);
 
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

@@ -94,6 +94,7 @@ SceneDefinition parseScene(const toml::table& root, const std::string& path) {
   readRunSettings(top, scene);
   readBlocks(top, scene);
   readBoundaries(top, scene);
+  readFluid(top, scene);
   readPhases(top, scene);
   readHistories(top, scene);
   top.finish();

@@ -47,6 +47,11 @@ TimeFunction readTimeFunction(TableReader& r, std::string_view key);
 // [[history]] and [[joint_assignment]].
 void readHistories(TableReader& top, SceneDefinition& scene);
 
+// [fluid] and [[flow_boundary]]; the fluid keys of a [[joint_material]].
+void readFluid(TableReader& top, SceneDefinition& scene);
+FlowBoundaryDefinition readFlowBoundary(TableReader& r);
+void readJointFlowKeys(TableReader& r, JointMaterial& joint);
+
 // [[phase]].
 void readPhases(TableReader& top, SceneDefinition& scene);
 

@@ -59,8 +59,10 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha, double 
     const bool viscous = !bl.dashpotForce.empty();
     const Vec2 dashpot = viscous ? bl.dashpotForce[b] : Vec2{};
     const double dashpotMoment = viscous ? bl.dashpotMoment[b] : 0.0;
-    const Vec2 body = mass * m.gravity + bl.appliedForce[b] + (viscous ? bl.boundaryForce[b] : Vec2{});
-    const double bodyMoment = bl.appliedMoment[b] + (viscous ? bl.boundaryMoment[b] : 0.0);
+    // Boundary loads: an incoming wave's, fluid pressures.
+    const bool loaded = !bl.boundaryForce.empty();
+    const Vec2 body = mass * m.gravity + bl.appliedForce[b] + (loaded ? bl.boundaryForce[b] : Vec2{});
+    const double bodyMoment = bl.appliedMoment[b] + (loaded ? bl.boundaryMoment[b] : 0.0);
     double unbalanced = 0.0;
     const Vec2 v{advance(driven & DriveX, bl.velocity[b].x, mass, bl.force[b].x, body.x, dashpot.x, unbalanced),
                  advance(driven & DriveY, bl.velocity[b].y, mass, bl.force[b].y, body.y, dashpot.y, unbalanced)};

@@ -60,7 +60,7 @@ struct Component {
 };
 
 // The components the model needs, in order: contacts, rigid-block-motion, deformable-blocks,
-// boundaries, free-field.
+// boundaries, free-field, fracture-flow.
 std::vector<Component> sceneComponents(RunContext& run);
 
 }  // namespace vdec

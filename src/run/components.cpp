@@ -6,6 +6,7 @@
 #include "boundary/free_field.hpp"
 #include "boundary/viscous_boundary.hpp"
 #include "contact/deformable_outline.hpp"
+#include "flow/fracture_flow.hpp"
 #include "motion/gridpoint_motion.hpp"
 #include "motion/rigid_motion.hpp"
 #include "run/component.hpp"
@@ -118,6 +119,15 @@ Component deformableBlocks(RunContext& run) {
   return c;
 }
 
+// Fluid in the joints (1.2, Fig. 1.2-5): the domain pressures load the blocks with the step's
+// forces; after the motion the network follows the contacts and the fluid flows over the step.
+Component fractureFlow(RunContext& run) {
+  Component c{"fracture-flow", {}, [&run] { return fluidMechanicalTimeStep(run.model, run.settings.frac); }};
+  c.stages.push_back({"fluid-pressures", [&run] { applyDomainPressures(run.model); }});
+  c.stages.push_back({"fluid-flow", [&run] { stepFlow(run.model, run.dt); }, StepPart::Motion});
+  return c;
+}
+
 }  // namespace
 
 std::vector<Component> sceneComponents(RunContext& run) {
@@ -128,6 +138,7 @@ std::vector<Component> sceneComponents(RunContext& run) {
   if (m.zones.size() > 0) components.push_back(deformableBlocks(run));
   if (m.zones.size() > 0 || !m.rigidViscousEdges.empty()) components.push_back(boundaries(run));
   if (!m.freeFields.empty()) components.push_back(freeField(run));
+  if (m.flow.on) components.push_back(fractureFlow(run));
   return components;
 }
 

@@ -1,5 +1,7 @@
 #include "run/cycle.hpp"
 
+#include "flow/fracture_flow.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -68,6 +70,7 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   for (int b = 0; b < bl.size(); ++b) hasRigidBlocks_ = hasRigidBlocks_ || !bl.deformable[b];
   hasContacts_ = bl.size() > 1;
   if (hasContacts_) detection_.initialise(model_);
+  if (model_.flow.on && model_.cycle == 0) startFlow(model_);
   components_ = sceneComponents(run_);
   // 1.3-30: the step is the smallest of the components' limits. The rigid blocks' (1.3-28, blocks
   // that move, through their joints) is formed first: density scaling sets the zones' to it.
@@ -444,7 +447,27 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
   const bool loaded = !model_.loadedEdges.empty(), driven = !model_.drivenVelocities.empty(),
              viscous = !model_.viscousEdges.empty(), freeField = !model_.freeFields.empty(),
              rigidViscous = !model_.rigidViscousEdges.empty();
-  for (const std::string& name : changes.freeBoundaries) energy_.withdraw(-freeBoundaryCondition(model_, name));
+  const bool flowing = model_.flow.on;
+  for (const std::string& name : changes.freeBoundaries) {
+    const auto flow = std::find_if(model_.flow.boundaries.begin(), model_.flow.boundaries.end(),
+                                   [&name](const FlowBoundary& b) { return b.active && b.name == name; });
+    if (flow != model_.flow.boundaries.end()) flow->active = false;
+    else energy_.withdraw(-freeBoundaryCondition(model_, name));
+  }
+  for (FlowBoundary b : changes.flowBoundaries) {
+    b.timeOrigin = model_.time;
+    model_.flow.boundaries.push_back(b);
+  }
+  if (changes.flow && *changes.flow != flowing) {
+    model_.flow.on = *changes.flow;
+    if (model_.flow.on) {
+      startFlow(model_);
+    } else {
+      model_.flow.knots.clear();
+      model_.flow.sides.clear();
+      model_.flow.domains.clear();
+    }
+  }
   const int added = static_cast<int>(model_.boundaryConditions.size());
   for (const BoundaryCondition& b : changes.boundaries) energy_.withdraw(addBoundaryCondition(model_, b, model_.time));
   for (FreeFieldColumn& c : model_.freeFields)
@@ -452,12 +475,12 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
   // A stage for tractions or driven velocities where there were none before, or none where they all went.
   if (loaded != !model_.loadedEdges.empty() || driven != !model_.drivenVelocities.empty() ||
       viscous != !model_.viscousEdges.empty() || freeField != !model_.freeFields.empty() ||
-      rigidViscous != !model_.rigidViscousEdges.empty())
+      rigidViscous != !model_.rigidViscousEdges.empty() || flowing != model_.flow.on)
     buildStages();
-  if (!changes.boundaries.empty()) {
-    // Dashpots and free-field columns brought on may need a shorter step.
+  if (!changes.boundaries.empty() || model_.flow.on != flowing) {
+    // Dashpots, free-field columns and fluid brought on may need a shorter step.
     formStiffnessDampingFactor();
-    undampedStep_ = std::min({undampedStep_, stepLimitOf("boundaries"), stepLimitOf("free-field")});
+    undampedStep_ = std::min({undampedStep_, stepLimitOf("boundaries"), stepLimitOf("free-field"), stepLimitOf("fracture-flow")});
     dt_ = std::min(dt_, dampedStep(undampedStep_));
   }
   Blocks& bl = model_.blocks;
@@ -763,7 +786,7 @@ RunReport Cycle::run() {
   report.staticSolveResidual = staticSolveResidual_;
   report.stiffnessDampingStepFactor = stiffnessDampingStepFactor_;
   for (const Component& c : components_)
-    if (c.stepLimit) report.stepLimits.emplace_back(c.name, c.stepLimit());
+    if (c.stepLimit && std::isfinite(c.stepLimit())) report.stepLimits.emplace_back(c.name, c.stepLimit());
   report.wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
   return report;
 }

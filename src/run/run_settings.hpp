@@ -51,6 +51,8 @@ struct PhaseChanges {
   bool resetDisplacements = false;       // displacement histories and outputs measured from here
   bool resetVelocities = false;
   bool staticSolve = false;  // after the changes, solve the elastic zones' equilibrium directly
+  std::optional<bool> flow;  // fluid flow switched on (its domains from the initial field) or off
+  std::vector<FlowBoundary> flowBoundaries;  // flow boundaries added, their histories from the phase's start
 };
 
 struct Phase {

@@ -28,6 +28,12 @@ BoundaryCondition resolveBoundary(const BoundaryDefinition& definition, Model& m
 Phase buildPhase(const PhaseDefinition& definition, Model& model, std::optional<Model>& geometry,
                  std::set<std::string>& active);
 
+// The fluid and its flow boundaries into the model (after the blocks); each joint material's
+// fluid keys checked against the presence of [fluid].
+void addFluid(Model& model, const SceneDefinition& scene);
+// A flow boundary resolved: its history appended to model.timeFunctions.
+FlowBoundary flowBoundary(Model& model, const FlowBoundaryDefinition& definition);
+
 // History subjects by position (initial configuration): the block's gridpoint nearest `point`,
 // and the zone of the block that holds `point` (-1 when none does).
 int nearestGridpoint(const Model& model, int block, Vec2 point);

@@ -99,6 +99,14 @@ Phase buildPhase(const PhaseDefinition& d, Model& m, std::optional<Model>& geome
                             "phase's free = [\"" + condition.name + "\"]");
     c.boundaries.push_back(std::move(condition));
   }
+  if (d.flow && !m.flow.present) d.origin.fail("flow", "needs a [fluid] table: the scene has no fluid");
+  c.flow = d.flow;
+  for (const FlowBoundaryDefinition& b : d.flowBoundaries) {
+    c.flowBoundaries.push_back(flowBoundary(m, b));
+    if (geometry) geometry->timeFunctions = m.timeFunctions;
+    if (!c.flowBoundaries.back().name.empty() && !active.insert(c.flowBoundaries.back().name).second)
+      b.origin.fail("name", "boundary '" + c.flowBoundaries.back().name + "' is active when the phase starts; free it first");
+  }
   return phase;
 }
 

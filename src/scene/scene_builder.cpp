@@ -489,6 +489,7 @@ Scene buildScene(SceneDefinition s) {
   if (m.blocks.size() > 1) attachDeformableOutlines(m);
   computeBoundaryGeometry(m);
   for (int b = 0; b < m.blocks.size(); ++b) placeBlockVertices(m, b);
+  addFluid(m, s);
 
   for (const BoundaryDefinition& d : s.boundaries) {
     BoundaryCondition condition = resolveBoundary(d, m);
@@ -502,6 +503,9 @@ Scene buildScene(SceneDefinition s) {
   std::set<std::string> active;
   for (const BoundaryCondition& b : m.boundaryConditions)
     if (!b.name.empty()) active.insert(b.name);
+  for (const FlowBoundary& b : m.flow.boundaries)
+    if (!b.name.empty() && !active.insert(b.name).second)
+      throw SceneError("flow boundary '" + b.name + "' has the name of a [[boundary]]: give it another");
   std::optional<Model> excavated;  // a copy of the model, excavated as the phases will, once one does
   std::vector<char> plastic;  // block materials Mohr-Coulomb by the phase at hand
   for (const BlockMaterial& mat : m.blockMaterials) plastic.push_back(mat.plastic);

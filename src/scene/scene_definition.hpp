@@ -131,6 +131,20 @@ struct InitialWaveDefinition {
   Origin origin;
 };
 
+// [fluid]: the fluid in the joints (1.4.2).
+struct FluidDefinition {
+  FluidProperties fluid;    // minDomainArea 0: the builder's default
+  bool flowing = true;      // from the start; a phase's `flow` switches it
+  Origin origin;
+};
+
+// A [[flow_boundary]] (or [[phase.flow_boundary]]).
+struct FlowBoundaryDefinition {
+  FlowBoundary boundary;
+  std::optional<TimeFunction> history;
+  Origin origin;
+};
+
 struct JointAssignmentDefinition {
   std::array<std::string, 2> blocks;
   std::string joint;
@@ -181,6 +195,8 @@ struct PhaseDefinition {
   std::vector<RigidBlockChangeDefinition> blocks;
   std::vector<ExcavationDefinition> excavations;
   std::vector<BoundaryDefinition> boundaries;
+  std::optional<bool> flow;  // fluid flow on or off from the phase's start
+  std::vector<FlowBoundaryDefinition> flowBoundaries;
   Origin origin;
 };
 
@@ -198,6 +214,8 @@ struct SceneDefinition {
   std::vector<BoundaryDefinition> boundaries;
   std::optional<InitialStressDefinition> initialStress;
   std::vector<InitialWaveDefinition> initialWaves;
+  std::optional<FluidDefinition> fluid;
+  std::vector<FlowBoundaryDefinition> flowBoundaries;
   std::vector<JointAssignmentDefinition> jointAssignments;
   std::vector<HistoryDefinition> histories;
   std::vector<PhaseDefinition> phases;

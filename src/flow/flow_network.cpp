@@ -1,0 +1,376 @@
+#include "flow/flow_network.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "contact/contact_geometry.hpp"
+
+namespace vdec {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Where a side sits on its block's boundary, for sorting: ring, place along it, then along the
+// edge, then (at a vertex) the direction of the contact around the rounded corner.
+struct SidePlace {
+  int ring = 0, order = 0;
+  double t = 0.0, turn = 0.0;
+  std::int64_t key = 0;
+};
+
+bool before(const SidePlace& a, const SidePlace& b) {
+  if (a.ring != b.ring) return a.ring < b.ring;
+  if (a.order != b.order) return a.order < b.order;
+  if (a.t != b.t) return a.t < b.t;
+  if (a.turn != b.turn) return a.turn < b.turn;
+  return a.key < b.key;
+}
+
+// Angle from the outward normal of the edge arriving at vertex v to `out`, in (-pi, pi]: how far
+// round the corner a contact pointing out along `out` sits.
+double turnAt(const Model& m, int v, Vec2 out) {
+  const Vec2 d = m.vertices.geometry[m.vertices.prev[v]].edgeDirection;
+  const Vec2 in{d.y, -d.x};
+  return std::atan2(cross(in, out), dot(in, out));
+}
+
+struct ContactPlace {
+  int contact = -1;
+  std::int64_t key = 0;
+  Vec2 point;
+  double overlap = 0.0;
+  int featureVertex = -1;
+  double featureT = 0.0;
+  double featureTurn = 0.0;
+  double cornerTurn = 0.0;
+};
+
+double pieceLength(Vec2 a, Vec2 b) { return norm(b - a); }
+
+}  // namespace
+
+double initialPressure(const Model& m, Vec2 at) {
+  const FluidProperties& f = m.flow.fluid;
+  if (std::isnan(f.waterTable)) return f.initialPressure;
+  const double g = norm(m.gravity);
+  const double depth = f.waterTable - at.y;
+  return depth > 0.0 ? f.density * g * depth : f.initialPressure;
+}
+
+double boundaryValue(const Model& m, const FlowBoundary& b, Vec2 at) {
+  const double value = std::isnan(b.waterTable) ? b.value
+                                                : m.flow.fluid.density * norm(m.gravity) * std::max(0.0, b.waterTable - at.y);
+  return b.history < 0 ? value : value * m.timeFunctions[b.history](m.time - b.timeOrigin);
+}
+
+void buildFlowNetwork(Model& m, bool carry) {
+  FlowState& fs = m.flow;
+  const Vertices& vx = m.vertices;
+  const int nBlocks = m.blocks.size();
+
+  // Rings: each outline of each block, its vertices numbered along it.
+  static thread_local std::vector<int> ringOf, orderOf;
+  ringOf.assign(vx.size(), -1);
+  orderOf.assign(vx.size(), 0);
+  for (int b = 0; b < nBlocks; ++b) {
+    int ring = 0;
+    const int first = m.blocks.firstVertex[b], last = first + m.blocks.vertexCount[b];
+    for (int v0 = first; v0 < last; ++v0) {
+      if (ringOf[v0] >= 0) continue;
+      int v = v0, order = 0;
+      do {
+        ringOf[v] = ring;
+        orderOf[v] = order++;
+        v = vx.next[v];
+      } while (v != v0 && order <= m.blocks.vertexCount[b]);
+      ++ring;
+    }
+  }
+
+  // Every contact where it is now.
+  const int nContacts = static_cast<int>(m.contacts.size());
+  std::vector<ContactPlace> places(nContacts);
+  for (int i = 0; i < nContacts; ++i) {
+    const Contact& c = m.contacts[i];
+    const FeatureHit hit = contactGeometry(m, c);
+    ContactPlace& p = places[i];
+    p.contact = i;
+    p.key = static_cast<std::int64_t>(c.corner) * nBlocks + c.blockB;
+    p.point = hit.point;
+    p.overlap = hit.overlap;
+    p.featureVertex = hit.feature;
+    p.cornerTurn = turnAt(m, c.corner, -1.0 * hit.normal);
+    if (hit.kind == FeatureKind::Edge) {
+      const VertexGeometry& e = vx.geometry[hit.feature];
+      const double along = dot(hit.point - e.position, e.edgeDirection) / e.edgeLength;
+      p.featureT = std::clamp(along, 0.0, std::nextafter(1.0, 0.0));
+      p.featureTurn = 2.0 * kPi;  // past any contact on the vertex's own corner
+    } else {
+      p.featureT = 0.0;
+      p.featureTurn = turnAt(m, hit.feature, hit.normal);
+    }
+  }
+
+  // Knots: contacts of the same two blocks within a quarter of the shorter one's length of each
+  // other (the two contacts of facing gridpoints, or of a corner that faces a corner) pass the
+  // fluid as one; the domain between them would be a sliver of no length.
+  std::vector<int> byPair(nContacts);
+  std::iota(byPair.begin(), byPair.end(), 0);
+  auto pairOf = [&](int i) {
+    const Contact& c = m.contacts[i];
+    return std::pair{std::min(c.blockA, c.blockB), std::max(c.blockA, c.blockB)};
+  };
+  std::sort(byPair.begin(), byPair.end(), [&](int a, int b) {
+    const auto pa = pairOf(a), pb = pairOf(b);
+    return pa != pb ? pa < pb : places[a].key < places[b].key;
+  });
+  std::vector<int> knotOf(nContacts, -1);
+  std::vector<FlowKnot> knots;
+  std::vector<int> knotContact;  // the contact whose sides the knot takes (its smallest key)
+  for (std::size_t start = 0; start < byPair.size();) {
+    std::size_t end = start;
+    while (end < byPair.size() && pairOf(byPair[end]) == pairOf(byPair[start])) ++end;
+    // Join within the pair: each contact to the first knot of the pair close enough.
+    const std::size_t firstKnot = knots.size();
+    for (std::size_t k = start; k < end; ++k) {
+      const int i = byPair[k];
+      const Contact& c = m.contacts[i];
+      int joined = -1;
+      for (std::size_t q = firstKnot; q < knots.size() && joined < 0; ++q) {
+        const Contact& other = m.contacts[knotContact[q]];
+        const double reach = 0.25 * std::min(c.length, other.length);
+        if (norm(places[i].point - places[knotContact[q]].point) < reach) joined = static_cast<int>(q);
+      }
+      if (joined < 0) {
+        FlowKnot knot;
+        knot.key = places[i].key;
+        knot.blockA = c.blockA;
+        knot.blockB = c.blockB;
+        knot.joint = c.joint;
+        knots.push_back(knot);
+        knotContact.push_back(i);
+        joined = static_cast<int>(knots.size()) - 1;
+      }
+      knotOf[i] = joined;
+    }
+    start = end;
+  }
+  std::vector<double> overlapSum(knots.size(), 0.0);
+  std::vector<Vec2> pointSum(knots.size());
+  for (int k = 0; k < nContacts; ++k) {
+    const int i = byPair[k];
+    FlowKnot& knot = knots[knotOf[i]];
+    const double w = m.contacts[i].length;
+    knot.length += w;
+    overlapSum[knotOf[i]] += w * places[i].overlap;
+    pointSum[knotOf[i]] += w * places[i].point;
+  }
+  for (std::size_t k = 0; k < knots.size(); ++k) {
+    FlowKnot& knot = knots[k];
+    const JointMaterial& j = m.jointMaterials[knot.joint];
+    knot.point = (1.0 / knot.length) * pointSum[k];
+    // 1.4-9: the aperture at zero normal stress opened by the joint's normal displacement
+    // (opening positive: the negative of the rounded shapes' overlap), within its bounds.
+    knot.aperture = std::clamp(j.aperture - overlapSum[k] / knot.length, j.residualAperture, j.maxAperture);
+  }
+
+  // Sides, sorted along each block's boundary.
+  std::vector<FlowSide> sides(2 * knots.size());
+  std::vector<SidePlace> sidePlace(sides.size());
+  for (std::size_t k = 0; k < knots.size(); ++k) {
+    const ContactPlace& p = places[knotContact[k]];
+    const Contact& c = m.contacts[knotContact[k]];
+    FlowSide& a = sides[2 * k];
+    a.knot = static_cast<int>(k);
+    a.block = c.blockA;
+    a.vertex = c.corner;
+    a.t = 0.0;
+    sidePlace[2 * k] = {ringOf[c.corner], orderOf[c.corner], 0.0, p.cornerTurn, 2 * knots[k].key};
+    FlowSide& b = sides[2 * k + 1];
+    b.knot = static_cast<int>(k);
+    b.block = c.blockB;
+    b.vertex = p.featureVertex;
+    b.t = p.featureT;
+    sidePlace[2 * k + 1] = {ringOf[b.vertex], orderOf[b.vertex], b.t, p.featureTurn, 2 * knots[k].key + 1};
+  }
+  for (std::size_t s = 0; s < sides.size(); ++s) {
+    sides[s].ring = sidePlace[s].ring;
+    sides[s].order = sidePlace[s].order;
+  }
+  std::vector<int> byBlock(sides.size());
+  std::iota(byBlock.begin(), byBlock.end(), 0);
+  std::sort(byBlock.begin(), byBlock.end(), [&](int a, int b) {
+    if (sides[a].block != sides[b].block) return sides[a].block < sides[b].block;
+    return before(sidePlace[a], sidePlace[b]);
+  });
+  for (std::size_t start = 0; start < byBlock.size();) {
+    std::size_t end = start;
+    const FlowSide& s0 = sides[byBlock[start]];
+    while (end < byBlock.size() && sides[byBlock[end]].block == s0.block && sides[byBlock[end]].ring == s0.ring) ++end;
+    for (std::size_t k = start; k < end; ++k) sides[byBlock[k]].next = byBlock[k + 1 < end ? k + 1 : start];
+    start = end;
+  }
+
+  // Block areas, to tell the outside loop from a void.
+  std::vector<double> blockArea(nBlocks, 0.0);
+  for (int b = 0; b < nBlocks; ++b) {
+    const int first = m.blocks.firstVertex[b], last = first + m.blocks.vertexCount[b];
+    for (int v = first; v < last; ++v) blockArea[b] += 0.5 * cross(vx.geometry[v].position, vx.geometry[vx.next[v]].position);
+  }
+
+  // A side's point, and the walk from a side to the next along the block, piece by piece.
+  auto sidePoint = [&](const FlowSide& s) {
+    const VertexGeometry& g = vx.geometry[s.vertex];
+    return g.position + (s.t * g.edgeLength) * g.edgeDirection;
+  };
+  for (std::size_t s = 0; s < sides.size(); ++s)
+    sides[s].wraps = sides[s].next == static_cast<int>(s) || !before(sidePlace[s], sidePlace[sides[s].next]);
+  auto walk = [&](int s, auto&& piece) { walkSide(vx, sides, s, piece); };
+  auto other = [&](int s) { return (s % 2 == 0) ? s + 1 : s - 1; };
+
+  // Domains: the loops of side -> next -> the knot's other side.
+  struct Loop {
+    std::int64_t key;
+    std::vector<int> sides;
+    double signedArea = 0.0, perimeter = 0.0, hydraulic = 0.0;
+    Vec2 centre;
+    bool outside = false;
+  };
+  std::vector<Loop> loops;
+  std::vector<int> loopOf(sides.size(), -1);
+  for (std::size_t s0 = 0; s0 < sides.size(); ++s0) {
+    if (loopOf[s0] >= 0) continue;
+    Loop loop;
+    loop.key = INT64_MAX;
+    double smallestBlock = INFINITY;
+    Vec2 weighted;
+    for (int s = static_cast<int>(s0); loopOf[s] < 0; s = other(sides[s].next)) {
+      loopOf[s] = static_cast<int>(loops.size());
+      loop.sides.push_back(s);
+      loop.key = std::min(loop.key, sidePlace[s].key);
+      smallestBlock = std::min(smallestBlock, std::abs(blockArea[sides[s].block]));
+      double length = 0.0;
+      walk(s, [&](int e, double t0, double t1) {
+        const VertexGeometry& g = vx.geometry[e];
+        const Vec2 p0 = g.position + (t0 * g.edgeLength) * g.edgeDirection;
+        const Vec2 p1 = g.position + (t1 * g.edgeLength) * g.edgeDirection;
+        const double l = pieceLength(p0, p1);
+        length += l;
+        weighted += (0.5 * l) * (p0 + p1);
+        loop.signedArea += 0.5 * cross(p0, p1);
+      });
+      // Across the knot to the other block.
+      const int n = sides[s].next;
+      loop.signedArea += 0.5 * cross(sidePoint(sides[n]), sidePoint(sides[other(n)]));
+      loop.perimeter += length;
+      const double a0 = knots[sides[s].knot].aperture, a1 = knots[sides[n].knot].aperture;
+      loop.hydraulic += 0.25 * length * (a0 + a1);
+    }
+    // The loop around the outside runs counter-clockwise around blocks: a positive area of the
+    // order of theirs. A void's runs clockwise (negative); a closed joint's sliver is of the
+    // order of its overlap times its length, far below any block's area.
+    loop.outside = loop.signedArea > 0.25 * smallestBlock;
+    loop.centre = loop.perimeter > 0.0 ? (1.0 / loop.perimeter) * weighted : sidePoint(sides[s0]);
+    loops.push_back(std::move(loop));
+  }
+
+  // Domains in the order of their keys.
+  std::vector<int> order;
+  for (std::size_t l = 0; l < loops.size(); ++l)
+    if (!loops[l].outside) order.push_back(static_cast<int>(l));
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return loops[a].key < loops[b].key; });
+  std::vector<int> domainOfLoop(loops.size(), -1);
+  std::vector<FlowDomain> domains(order.size());
+  for (std::size_t d = 0; d < order.size(); ++d) {
+    const Loop& loop = loops[order[d]];
+    domainOfLoop[order[d]] = static_cast<int>(d);
+    FlowDomain& dom = domains[d];
+    dom.key = loop.key;
+    dom.centre = loop.centre;
+    dom.perimeter = loop.perimeter;
+    // The fluid fills the joints that bound the domain at their hydraulic apertures, or the
+    // void's own area where that is larger (an opening), never less than the floor.
+    dom.area = std::max({loop.hydraulic, -loop.signedArea, fs.fluid.minDomainArea});
+    dom.atMinimumArea = dom.area == fs.fluid.minDomainArea;
+  }
+  for (std::size_t s = 0; s < sides.size(); ++s) sides[s].domain = domainOfLoop[loopOf[s]];
+  for (std::size_t k = 0; k < knots.size(); ++k) {
+    knots[k].domain[0] = sides[2 * k].domain;
+    knots[k].domain[1] = sides[2 * k + 1].domain;
+  }
+
+  // The fluid of the domains before passes to those that share a side with them now.
+  const double kw = fs.fluid.bulkModulus;
+  auto fill = [&](FlowDomain& d, double p) {
+    d.pressure = p;
+    d.content = d.area * (1.0 + p / kw);
+  };
+  if (!carry) {
+    for (FlowDomain& d : domains) fill(d, initialPressure(m, d.centre));
+  } else {
+    std::vector<std::pair<std::int64_t, int>> oldSide;
+    for (std::size_t s = 0; s < fs.sides.size(); ++s)
+      if (fs.sides[s].domain >= 0) {
+        const FlowKnot& k = fs.knots[fs.sides[s].knot];
+        oldSide.emplace_back(2 * k.key + (fs.sides[s].block == k.blockA ? 0 : 1), fs.sides[s].domain);
+      }
+    std::sort(oldSide.begin(), oldSide.end());
+    std::vector<std::pair<int, int>> links;  // (old domain, new domain)
+    for (std::size_t s = 0; s < sides.size(); ++s) {
+      if (sides[s].domain < 0) continue;
+      const auto found = std::lower_bound(oldSide.begin(), oldSide.end(), std::pair{sidePlace[s].key, -1});
+      if (found != oldSide.end() && found->first == sidePlace[s].key) links.emplace_back(found->second, sides[s].domain);
+    }
+    std::sort(links.begin(), links.end());
+    links.erase(std::unique(links.begin(), links.end()), links.end());
+    std::vector<double> targetArea(fs.domains.size(), 0.0);
+    std::vector<char> reached(domains.size(), 0);
+    for (const auto& [o, d] : links) targetArea[o] += domains[d].area;
+    for (FlowDomain& d : domains) d.content = 0.0;
+    std::vector<char> passed(fs.domains.size(), 0);
+    for (const auto& [o, d] : links) {
+      domains[d].content += fs.domains[o].content * (domains[d].area / targetArea[o]);
+      reached[d] = 1;
+      passed[o] = 1;
+    }
+    for (std::size_t o = 0; o < fs.domains.size(); ++o)
+      if (!passed[o]) fs.totals.removed += fs.domains[o].content;
+    for (std::size_t d = 0; d < domains.size(); ++d) {
+      FlowDomain& dom = domains[d];
+      if (reached[d]) {
+        dom.pressure = kw * (dom.content / dom.area - 1.0);
+      } else {
+        fill(dom, initialPressure(m, dom.centre));
+        fs.totals.created += dom.content;
+      }
+    }
+    // The instability watch follows a domain that stays the same.
+    for (const auto& [o, d] : links) {
+      domains[d].lastChange = fs.domains[o].lastChange;
+      domains[d].growing = fs.domains[o].growing;
+    }
+  }
+
+  // Boundaries: the last active one whose box holds a mouth or a domain's centre governs it.
+  for (int b = 0; b < static_cast<int>(fs.boundaries.size()); ++b) {
+    const FlowBoundary& fb = fs.boundaries[b];
+    if (!fb.active) continue;
+    auto inside = [&](Vec2 p) { return p.x >= fb.lo.x && p.x <= fb.hi.x && p.y >= fb.lo.y && p.y <= fb.hi.y; };
+    if (!fb.inflow)
+      for (FlowKnot& k : knots)
+        if ((k.domain[0] < 0 || k.domain[1] < 0) && inside(k.point)) k.boundary = b;
+    for (FlowDomain& d : domains)
+      if (inside(d.centre)) {
+        d.boundary = b;
+        d.fixed = !fb.inflow;
+      }
+  }
+
+  fs.knots = std::move(knots);
+  fs.sides = std::move(sides);
+  fs.domains = std::move(domains);
+}
+
+}  // namespace vdec

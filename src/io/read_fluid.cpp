@@ -1,0 +1,86 @@
+// [fluid], [[flow_boundary]] and the fluid keys of a [[joint_material]] (1.4.2).
+#include <cmath>
+
+#include "io/scene_sections.hpp"
+
+namespace vdec {
+
+void readJointFlowKeys(TableReader& r, JointMaterial& j) {
+  // Checked against the [fluid] table by the builder: without it these keys mean nothing.
+  if (r.has("aperture")) j.aperture = r.nonNegative("aperture", 0.0);
+  if (r.has("residual_aperture")) {
+    j.residualAperture = r.positive("residual_aperture");
+    if (r.has("aperture") && j.residualAperture > j.aperture)
+      r.fail("residual_aperture", "must not exceed aperture (" + shown(j.aperture) + " m), the aperture at zero normal stress");
+  }
+  if (r.has("max_aperture")) {
+    j.maxAperture = r.positive("max_aperture");
+    if (j.maxAperture < std::max(j.aperture, j.residualAperture))
+      r.fail("max_aperture", "must be at least aperture and residual_aperture (" + shown(std::max(j.aperture, j.residualAperture)) + " m)");
+  }
+  if (r.has("point_permeability")) {
+    if (j.law != JointLaw::PointContact)
+      r.fail("point_permeability", "is the flow law of the point-contact joint law (1.4-7); joints of the other laws "
+                                   "pass fluid by the cubic law of their aperture (1.4-8)");
+    j.pointPermeability = r.nonNegative("point_permeability", 0.0);
+  }
+}
+
+FlowBoundaryDefinition readFlowBoundary(TableReader& r) {
+  FlowBoundaryDefinition d;
+  d.origin = r.origin();
+  FlowBoundary& b = d.boundary;
+  b.name = r.string("name", "");
+  const std::vector<double> box = r.numbers("box", 4, "must be [x_min, y_min, x_max, y_max], e.g. [-1.0, 0.0, 0.0, 1.0]");
+  b.lo = {box[0], box[1]};
+  b.hi = {box[2], box[3]};
+  if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y)) r.fail("box", "needs x_min <= x_max and y_min <= y_max");
+  const int given = r.has("pressure") + r.has("water_table") + r.has("inflow");
+  if (given != 1)
+    r.failTable(given == 0 ? "gives no condition: give pressure (Pa), water_table (m) or inflow (m^2/s per unit thickness)"
+                           : "give one of pressure, water_table and inflow");
+  if (r.has("pressure")) b.value = r.number("pressure");
+  if (r.has("water_table")) b.waterTable = r.number("water_table");
+  if (r.has("inflow")) {
+    b.inflow = true;
+    b.value = r.number("inflow");
+  }
+  if (r.has("history")) d.history = readTimeFunction(r, "history");
+  r.finish();
+  return d;
+}
+
+void readFluid(TableReader& top, SceneDefinition& scene) {
+  if (auto t = top.subtable("fluid")) {
+    FluidDefinition d;
+    d.origin = t->origin();
+    FluidProperties& f = d.fluid;
+    f.density = t->has("density") ? t->positive("density") : 1000.0;
+    f.bulkModulus = t->positive("bulk_modulus");
+    f.viscosity = t->positive("viscosity");
+    f.yieldStress = t->nonNegative("yield_stress", 0.0);
+    const std::string law = t->string("bingham_law", "linear");
+    if (law == "buckingham") f.buckingham = true;
+    else if (law != "linear") t->fail("bingham_law", "unknown law '" + law + "'; use linear or buckingham");
+    if (t->has("bingham_law") && f.yieldStress == 0.0)
+      t->fail("bingham_law", "applies to a Bingham fluid: give yield_stress > 0 too");
+    f.initialPressure = t->number("initial_pressure", 0.0);
+    if (t->has("water_table")) f.waterTable = t->number("water_table");
+    if (t->has("step_fraction")) {
+      f.stepFraction = t->positive("step_fraction");
+      if (f.stepFraction > 4.0)
+        t->fail("step_fraction", "must be in (0, 4]: the fluid sub-step as a fraction of the limit 1.4-11 (0.8 by "
+                                 "default; above 1 the explicit flow may be unstable, which the run detects)");
+    }
+    if (t->has("min_domain_area")) f.minDomainArea = t->positive("min_domain_area");
+    d.flowing = t->boolean("flow", true);
+    t->finish();
+    scene.fluid = d;
+  }
+  for (auto [table, prefix] : top.tables("flow_boundary")) {
+    TableReader r(*table, prefix, top.file());
+    scene.flowBoundaries.push_back(readFlowBoundary(r));
+  }
+}
+
+}  // namespace vdec
