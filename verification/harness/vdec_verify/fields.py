@@ -26,6 +26,9 @@ displacement_x, displacement_y, ...} (initial positions).
                                                                        problem ("" the plain run): a ratio
                                                                        of two runs' cycles
 
+of = "domains" (pressure, area, content; at the domains' present centres) and "knots" (flow,
+aperture, length, conductance; at their present points; block selects the knot's block A) for
+fracture flow.
 of = "zones" (quantities sxx, syy, sxy, szz and, about `centre`, srr, stt, srt), "gridpoints"
 (ux, uy and, about `centre`, ur, ut) or "contacts" (sn, the normal stress, compression positive,
 and tau, the shear stress: force over contact length; the closed contacts, at their present
@@ -51,6 +54,9 @@ BUILTINS = {"ratio": ratio}
 ZONE_QUANTITIES = ("sxx", "syy", "sxy", "szz", "srr", "stt", "srt", "plastic")
 GRIDPOINT_QUANTITIES = ("ux", "uy", "ur", "ut")
 CONTACT_QUANTITIES = ("sn", "tau")
+# Fracture flow: results["domains"] (pressure, area, content at the domains' present centres) and
+# results["knots"] (flow, aperture, length, conductance at the knots' present points).
+FLOW_QUANTITIES = {"domains": ("pressure", "area", "content"), "knots": ("flow", "aperture", "length", "conductance")}
 POLAR = ("srr", "stt", "srt", "ur", "ut")
 SELECTION_KEYS = ("block", "centre", "x", "y", "r", "angle")
 
@@ -74,7 +80,8 @@ def _columns(results, of):
         return _contact_columns(results)
     table = results.get(of)
     if not isinstance(table, dict):
-        raise ExtractError(f"the results have no '{of}' (a scene without deformable blocks has none)")
+        raise ExtractError(f"the results have no '{of}' (a scene without deformable blocks has no zones or "
+                           "gridpoints; one without [fluid] no domains or knots)")
     return table
 
 
@@ -124,6 +131,10 @@ def _values(columns, of, quantity, theta):
         if quantity == "stt":
             return sxx * s * s + syy * c * c - 2.0 * sxy * s * c
         return (syy - sxx) * s * c + sxy * (c * c - s * s)
+    if of in FLOW_QUANTITIES:
+        if quantity not in FLOW_QUANTITIES[of]:
+            raise ExtractError(f"{of} have no quantity '{quantity}' (known: {', '.join(FLOW_QUANTITIES[of])})")
+        return np.asarray(columns[quantity], dtype=float)
     if of == "contacts":
         if quantity not in CONTACT_QUANTITIES:
             raise ExtractError(f"contacts have no quantity '{quantity}' (known: {', '.join(CONTACT_QUANTITIES)})")
