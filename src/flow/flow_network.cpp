@@ -10,8 +10,6 @@ namespace vdec {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Where a side sits on its block's boundary, for sorting: ring, place along it, then along the
 // edge, then (at a vertex) the direction of the contact around the rounded corner.
 struct SidePlace {
@@ -42,7 +40,6 @@ struct ContactPlace {
   Vec2 point;
   double overlap = 0.0;
   int featureVertex = -1;
-  double featureT = 0.0;
   double featureTurn = 0.0;
   double cornerTurn = 0.0;
 };
@@ -102,15 +99,7 @@ void buildFlowNetwork(Model& m, bool carry) {
     p.overlap = hit.overlap;
     p.featureVertex = hit.feature;
     p.cornerTurn = turnAt(m, c.corner, -1.0 * hit.normal);
-    if (hit.kind == FeatureKind::Edge) {
-      const VertexGeometry& e = vx.geometry[hit.feature];
-      const double along = dot(hit.point - e.position, e.edgeDirection) / e.edgeLength;
-      p.featureT = std::clamp(along, 0.0, std::nextafter(1.0, 0.0));
-      p.featureTurn = 2.0 * kPi;  // past any contact on the vertex's own corner
-    } else {
-      p.featureT = 0.0;
-      p.featureTurn = turnAt(m, hit.feature, hit.normal);
-    }
+    p.featureTurn = hit.kind == FeatureKind::Edge ? 0.0 : turnAt(m, hit.feature, hit.normal);
   }
 
   // Knots: contacts of the same two blocks within a quarter of the shorter one's length of each
@@ -176,24 +165,46 @@ void buildFlowNetwork(Model& m, bool carry) {
     knot.aperture = std::clamp(j.aperture - overlapSum[k] / knot.length, j.residualAperture, j.maxAperture);
   }
 
-  // Sides, sorted along each block's boundary.
+  // Sides, sorted along each block's boundary: where the knot's point falls on each block's
+  // polygon, next to the corner or on the edge its contact has there. Both blocks' sides sit
+  // at the same point, so that which block's corner the contact belongs to (it may change from
+  // step to step where two corners meet) does not move them.
+  auto project = [&](Vec2 point, int v, bool alsoBefore) {
+    std::pair<int, double> best{v, 0.0};
+    double nearest = INFINITY;
+    for (const int e : {alsoBefore ? vx.prev[v] : v, v}) {
+      const VertexGeometry& g = vx.geometry[e];
+      const double along = std::clamp(dot(point - g.position, g.edgeDirection), 0.0, g.edgeLength);
+      const double distance = norm(g.position + along * g.edgeDirection - point);
+      if (distance < nearest) {
+        nearest = distance;
+        best = along >= g.edgeLength ? std::pair{vx.next[e], 0.0} : std::pair{e, along / g.edgeLength};
+      }
+    }
+    return best;
+  };
   std::vector<FlowSide> sides(2 * knots.size());
   std::vector<SidePlace> sidePlace(sides.size());
   for (std::size_t k = 0; k < knots.size(); ++k) {
     const ContactPlace& p = places[knotContact[k]];
     const Contact& c = m.contacts[knotContact[k]];
+    const Contact& first = m.contacts[knotContact[k]];
+    const bool edge = first.featureKind == FeatureKind::Edge;
+    const auto [va, ta] = project(knots[k].point, c.corner, true);
+    const auto [vb, tb] = project(knots[k].point, p.featureVertex, !edge);
     FlowSide& a = sides[2 * k];
     a.knot = static_cast<int>(k);
     a.block = c.blockA;
-    a.vertex = c.corner;
-    a.t = 0.0;
-    sidePlace[2 * k] = {ringOf[c.corner], orderOf[c.corner], 0.0, p.cornerTurn, 2 * knots[k].key};
+    a.vertex = va;
+    a.t = ta;
+    sidePlace[2 * k] = {ringOf[va], orderOf[va], ta, ta == 0.0 && va == c.corner ? p.cornerTurn : 0.0, 2 * knots[k].key};
     FlowSide& b = sides[2 * k + 1];
     b.knot = static_cast<int>(k);
     b.block = c.blockB;
-    b.vertex = p.featureVertex;
-    b.t = p.featureT;
-    sidePlace[2 * k + 1] = {ringOf[b.vertex], orderOf[b.vertex], b.t, p.featureTurn, 2 * knots[k].key + 1};
+    b.vertex = vb;
+    b.t = tb;
+    sidePlace[2 * k + 1] = {ringOf[vb], orderOf[vb], tb, tb == 0.0 && !edge && vb == p.featureVertex ? p.featureTurn : 0.0,
+                            2 * knots[k].key + 1};
   }
   for (std::size_t s = 0; s < sides.size(); ++s) {
     sides[s].ring = sidePlace[s].ring;
@@ -325,6 +336,9 @@ void buildFlowNetwork(Model& m, bool carry) {
     }
     std::sort(links.begin(), links.end());
     links.erase(std::unique(links.begin(), links.end()), links.end());
+    bool same = links.size() == domains.size() && links.size() == fs.domains.size();
+    for (std::size_t i = 0; same && i < links.size(); ++i) same = links[i].first == static_cast<int>(i) && links[i].second == static_cast<int>(i);
+    if (!same) ++fs.totals.networkChanges;
     std::vector<double> targetArea(fs.domains.size(), 0.0);
     std::vector<char> reached(domains.size(), 0);
     for (const auto& [o, d] : links) targetArea[o] += domains[d].area;

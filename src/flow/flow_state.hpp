@@ -94,6 +94,7 @@ struct FlowTotals {
   double created = 0.0;         // content given to domains that opened, from the initial pressure field
   double removed = 0.0;         // content of domains that closed without a successor
   long long subSteps = 0;
+  long long networkChanges = 0;  // steps whose network had domains other than the step before's
 };
 
 struct FlowState {
@@ -107,9 +108,9 @@ struct FlowState {
   FlowTotals totals;
   double subStep = 0.0;          // the fluid step of the last mechanical step, s
   int subSteps = 0;              // NSFDT of the last mechanical step
-  // The stiffest a domain's fluid may be on the blocks around it (K_w perimeter^2 / area at the
-  // residual apertures) when the mechanical step was set, for the check that it has not grown.
-  double stiffnessBound = 0.0;
+  // The domains' net inflow over the flow through the knots, at the last sub-step: 0 in a
+  // steady flow (or none); the run's unbalanced ratio includes it while the fluid flows.
+  double unbalancedRatio = 0.0;
 };
 
 }  // namespace vdec

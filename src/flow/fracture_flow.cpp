@@ -192,6 +192,26 @@ void stepFlow(Model& m, double dt) {
     }
   }
   fs.totals.subSteps += n;
+  // How far from steady the flow is: the domains' net inflow over the flow the knots would pass
+  // under the largest pressure in the model (a dead-end network at rest passes none at all).
+  std::vector<double> net(fs.domains.size(), 0.0);
+  double scale = 0.0, conductance = 0.0;
+  for (const FlowDomain& d : fs.domains) scale = std::max(scale, std::abs(d.pressure));
+  for (const FlowKnot& k : fs.knots) {
+    if (k.domain[0] >= 0) net[k.domain[0]] -= k.flow;
+    if (k.domain[1] >= 0) net[k.domain[1]] += k.flow;
+    conductance += knotConductance(m, k);
+    if (k.boundary >= 0) scale = std::max(scale, std::abs(boundaryValue(m, fs.boundaries[k.boundary], k.point)));
+  }
+  const double through = conductance * std::max(scale, 1.0);
+  double unbalanced = 0.0;
+  for (std::size_t d = 0; d < fs.domains.size(); ++d) {
+    const FlowDomain& dom = fs.domains[d];
+    if (dom.fixed) continue;
+    if (dom.boundary >= 0) net[d] += rate[dom.boundary];  // a source's flow counts against the knots'
+    unbalanced += std::abs(net[d]);
+  }
+  fs.unbalancedRatio = through > 0.0 ? unbalanced / through : 0.0;
 }
 
 double fluidMechanicalTimeStep(const Model& m, double frac) {

@@ -265,6 +265,8 @@ void Cycle::checkEnergy() {
   monitors_.largestUnbalancedForce = largestUnbalanced_;
   monitors_.unbalancedRatio = meanContactForce_ > 0.0 ? largestUnbalanced_ / meanContactForce_
                               : (largestUnbalanced_ > 0.0 ? 1.0 : 0.0);
+  // With fluid flowing, equilibrium is steady flow too.
+  if (model_.flow.on) monitors_.unbalancedRatio = std::max(monitors_.unbalancedRatio, model_.flow.unbalancedRatio);
   const double excess = energy_.measureExcess();
   monitors_.energyRatio = mechanical / energy_.largestSupplied();
   if (!(excess <= kEnergyExcessLimit * energy_.largestSupplied())) {
