@@ -183,47 +183,6 @@ void buildFlowNetwork(Model& m, bool carry) {
     }
     return best;
   };
-  std::vector<FlowSide> sides(2 * knots.size());
-  std::vector<SidePlace> sidePlace(sides.size());
-  for (std::size_t k = 0; k < knots.size(); ++k) {
-    const ContactPlace& p = places[knotContact[k]];
-    const Contact& c = m.contacts[knotContact[k]];
-    const Contact& first = m.contacts[knotContact[k]];
-    const bool edge = first.featureKind == FeatureKind::Edge;
-    const auto [va, ta] = project(knots[k].point, c.corner, true);
-    const auto [vb, tb] = project(knots[k].point, p.featureVertex, !edge);
-    FlowSide& a = sides[2 * k];
-    a.knot = static_cast<int>(k);
-    a.block = c.blockA;
-    a.vertex = va;
-    a.t = ta;
-    sidePlace[2 * k] = {ringOf[va], orderOf[va], ta, ta == 0.0 && va == c.corner ? p.cornerTurn : 0.0, 2 * knots[k].key};
-    FlowSide& b = sides[2 * k + 1];
-    b.knot = static_cast<int>(k);
-    b.block = c.blockB;
-    b.vertex = vb;
-    b.t = tb;
-    sidePlace[2 * k + 1] = {ringOf[vb], orderOf[vb], tb, tb == 0.0 && !edge && vb == p.featureVertex ? p.featureTurn : 0.0,
-                            2 * knots[k].key + 1};
-  }
-  for (std::size_t s = 0; s < sides.size(); ++s) {
-    sides[s].ring = sidePlace[s].ring;
-    sides[s].order = sidePlace[s].order;
-  }
-  std::vector<int> byBlock(sides.size());
-  std::iota(byBlock.begin(), byBlock.end(), 0);
-  std::sort(byBlock.begin(), byBlock.end(), [&](int a, int b) {
-    if (sides[a].block != sides[b].block) return sides[a].block < sides[b].block;
-    return before(sidePlace[a], sidePlace[b]);
-  });
-  for (std::size_t start = 0; start < byBlock.size();) {
-    std::size_t end = start;
-    const FlowSide& s0 = sides[byBlock[start]];
-    while (end < byBlock.size() && sides[byBlock[end]].block == s0.block && sides[byBlock[end]].ring == s0.ring) ++end;
-    for (std::size_t k = start; k < end; ++k) sides[byBlock[k]].next = byBlock[k + 1 < end ? k + 1 : start];
-    start = end;
-  }
-
   // Block areas, to tell the outside loop from a void.
   std::vector<double> blockArea(nBlocks, 0.0);
   for (int b = 0; b < nBlocks; ++b) {
@@ -236,9 +195,6 @@ void buildFlowNetwork(Model& m, bool carry) {
     const VertexGeometry& g = vx.geometry[s.vertex];
     return g.position + (s.t * g.edgeLength) * g.edgeDirection;
   };
-  for (std::size_t s = 0; s < sides.size(); ++s)
-    sides[s].wraps = sides[s].next == static_cast<int>(s) || !before(sidePlace[s], sidePlace[sides[s].next]);
-  auto walk = [&](int s, auto&& piece) { walkSide(vx, sides, s, piece); };
   auto other = [&](int s) { return (s % 2 == 0) ? s + 1 : s - 1; };
 
   // Domains: the loops of side -> next -> the knot's other side.
@@ -249,42 +205,105 @@ void buildFlowNetwork(Model& m, bool carry) {
     Vec2 centre;
     bool outside = false;
   };
+  std::vector<FlowSide> sides;
+  std::vector<SidePlace> sidePlace;
   std::vector<Loop> loops;
-  std::vector<int> loopOf(sides.size(), -1);
-  for (std::size_t s0 = 0; s0 < sides.size(); ++s0) {
-    if (loopOf[s0] >= 0) continue;
-    Loop loop;
-    loop.key = INT64_MAX;
-    double smallestBlock = INFINITY;
-    Vec2 weighted;
-    for (int s = static_cast<int>(s0); loopOf[s] < 0; s = other(sides[s].next)) {
-      loopOf[s] = static_cast<int>(loops.size());
-      loop.sides.push_back(s);
-      loop.key = std::min(loop.key, sidePlace[s].key);
-      smallestBlock = std::min(smallestBlock, std::abs(blockArea[sides[s].block]));
-      double length = 0.0;
-      walk(s, [&](int e, double t0, double t1) {
-        const VertexGeometry& g = vx.geometry[e];
-        const Vec2 p0 = g.position + (t0 * g.edgeLength) * g.edgeDirection;
-        const Vec2 p1 = g.position + (t1 * g.edgeLength) * g.edgeDirection;
-        const double l = pieceLength(p0, p1);
-        length += l;
-        weighted += (0.5 * l) * (p0 + p1);
-        loop.signedArea += 0.5 * cross(p0, p1);
-      });
-      // Across the knot to the other block.
-      const int n = sides[s].next;
-      loop.signedArea += 0.5 * cross(sidePoint(sides[n]), sidePoint(sides[other(n)]));
-      loop.perimeter += length;
-      const double a0 = knots[sides[s].knot].aperture, a1 = knots[sides[n].knot].aperture;
-      loop.hydraulic += 0.25 * length * (a0 + a1);
+  std::vector<int> loopOf;
+  auto walk = [&](int s, auto&& piece) { walkSide(vx, sides, s, piece); };
+  // A knot with the same void on both sides (the corners meeting diagonally at a crossing of
+  // joints, or blocks touching corner to corner with the outside all round) parts nothing: it
+  // leaves the network, so that the rounded corners' gap it measures is no aperture of a joint.
+  for (;;) {
+    sides.assign(2 * knots.size(), FlowSide{});
+    sidePlace.assign(sides.size(), SidePlace{});
+    loops.clear();
+    loopOf.assign(sides.size(), -1);
+    for (std::size_t k = 0; k < knots.size(); ++k) {
+      const ContactPlace& p = places[knotContact[k]];
+      const Contact& c = m.contacts[knotContact[k]];
+      const bool edge = c.featureKind == FeatureKind::Edge;
+      const auto [va, ta] = project(knots[k].point, c.corner, true);
+      const auto [vb, tb] = project(knots[k].point, p.featureVertex, !edge);
+      FlowSide& a = sides[2 * k];
+      a.knot = static_cast<int>(k);
+      a.block = c.blockA;
+      a.vertex = va;
+      a.t = ta;
+      sidePlace[2 * k] = {ringOf[va], orderOf[va], ta, ta == 0.0 && va == c.corner ? p.cornerTurn : 0.0, 2 * knots[k].key};
+      FlowSide& b = sides[2 * k + 1];
+      b.knot = static_cast<int>(k);
+      b.block = c.blockB;
+      b.vertex = vb;
+      b.t = tb;
+      sidePlace[2 * k + 1] = {ringOf[vb], orderOf[vb], tb, tb == 0.0 && !edge && vb == p.featureVertex ? p.featureTurn : 0.0,
+                              2 * knots[k].key + 1};
     }
-    // The loop around the outside runs counter-clockwise around blocks: a positive area of the
-    // order of theirs. A void's runs clockwise (negative); a closed joint's sliver is of the
-    // order of its overlap times its length, far below any block's area.
-    loop.outside = loop.signedArea > 0.25 * smallestBlock;
-    loop.centre = loop.perimeter > 0.0 ? (1.0 / loop.perimeter) * weighted : sidePoint(sides[s0]);
-    loops.push_back(std::move(loop));
+    for (std::size_t s = 0; s < sides.size(); ++s) {
+      sides[s].ring = sidePlace[s].ring;
+      sides[s].order = sidePlace[s].order;
+    }
+    std::vector<int> byBlock(sides.size());
+    std::iota(byBlock.begin(), byBlock.end(), 0);
+    std::sort(byBlock.begin(), byBlock.end(), [&](int a, int b) {
+      if (sides[a].block != sides[b].block) return sides[a].block < sides[b].block;
+      return before(sidePlace[a], sidePlace[b]);
+    });
+    for (std::size_t start = 0; start < byBlock.size();) {
+      std::size_t end = start;
+      const FlowSide& s0 = sides[byBlock[start]];
+      while (end < byBlock.size() && sides[byBlock[end]].block == s0.block && sides[byBlock[end]].ring == s0.ring) ++end;
+      for (std::size_t k = start; k < end; ++k) sides[byBlock[k]].next = byBlock[k + 1 < end ? k + 1 : start];
+      start = end;
+    }
+    for (std::size_t s = 0; s < sides.size(); ++s)
+      sides[s].wraps = sides[s].next == static_cast<int>(s) || !before(sidePlace[s], sidePlace[sides[s].next]);
+    for (std::size_t s0 = 0; s0 < sides.size(); ++s0) {
+      if (loopOf[s0] >= 0) continue;
+      Loop loop;
+      loop.key = INT64_MAX;
+      double smallestBlock = INFINITY;
+      Vec2 weighted;
+      for (int s = static_cast<int>(s0); loopOf[s] < 0; s = other(sides[s].next)) {
+        loopOf[s] = static_cast<int>(loops.size());
+        loop.sides.push_back(s);
+        loop.key = std::min(loop.key, sidePlace[s].key);
+        smallestBlock = std::min(smallestBlock, std::abs(blockArea[sides[s].block]));
+        double length = 0.0;
+        walk(s, [&](int e, double t0, double t1) {
+          const VertexGeometry& g = vx.geometry[e];
+          const Vec2 p0 = g.position + (t0 * g.edgeLength) * g.edgeDirection;
+          const Vec2 p1 = g.position + (t1 * g.edgeLength) * g.edgeDirection;
+          const double l = pieceLength(p0, p1);
+          length += l;
+          weighted += (0.5 * l) * (p0 + p1);
+          loop.signedArea += 0.5 * cross(p0, p1);
+        });
+        // Across the knot to the other block.
+        const int n = sides[s].next;
+        loop.signedArea += 0.5 * cross(sidePoint(sides[n]), sidePoint(sides[other(n)]));
+        loop.perimeter += length;
+        const double a0 = knots[sides[s].knot].aperture, a1 = knots[sides[n].knot].aperture;
+        loop.hydraulic += 0.25 * length * (a0 + a1);
+      }
+      // The loop around the outside runs counter-clockwise around blocks: a positive area of the
+      // order of theirs. A void's runs clockwise (negative); a closed joint's sliver is of the
+      // order of its overlap times its length, far below any block's area.
+      loop.outside = loop.signedArea > 0.25 * smallestBlock;
+      loop.centre = loop.perimeter > 0.0 ? (1.0 / loop.perimeter) * weighted : sidePoint(sides[s0]);
+      loops.push_back(std::move(loop));
+    }
+    std::vector<int> kept;
+    for (std::size_t k = 0; k < knots.size(); ++k)
+      if (loopOf[2 * k] != loopOf[2 * k + 1]) kept.push_back(static_cast<int>(k));
+    if (kept.size() == knots.size()) break;
+    std::vector<FlowKnot> keptKnots;
+    std::vector<int> keptContacts;
+    for (const int k : kept) {
+      keptKnots.push_back(knots[k]);
+      keptContacts.push_back(knotContact[k]);
+    }
+    knots = std::move(keptKnots);
+    knotContact = std::move(keptContacts);
   }
 
   // Domains in the order of their keys.
