@@ -12,6 +12,10 @@
 
 namespace vdec {
 
+// How the domain pressures advance: explicit sub-steps (the reference's scheme), backward Euler
+// by a sparse solve each step, or the steady flow of the present apertures each step.
+enum class FlowScheme : std::uint8_t { Explicit, Implicit, Steady };
+
 // The [fluid] table. Pressures are total pore pressures, compression positive; with gravity the
 // flow follows the gradient of p - rho_w g . x, so that a hydrostatic field does not flow.
 struct FluidProperties {
@@ -20,6 +24,7 @@ struct FluidProperties {
   double viscosity = 0.0;        // mu, Pa s
   double yieldStress = 0.0;      // tau_y of a Bingham fluid, Pa (0: Newtonian)
   bool buckingham = false;       // Bingham flow by Buckingham's law rather than the linear one
+  FlowScheme scheme = FlowScheme::Explicit;
   double initialPressure = 0.0;  // Pa, where no water table is given (or above it)
   double waterTable = NAN;       // y of a hydrostatic water table (NaN: none)
   double stepFraction = 0.8;     // the fluid sub-step as a fraction of the stability limit 1.4-11
@@ -86,13 +91,15 @@ struct FlowDomain {
 
 // Running totals of the fluid (m^2 per unit thickness since the flow began): the balance
 // inflow - outflow - stored - released must close to round-off.
-// inflow - outflow - (content - initial content) - created + removed is zero to round-off.
+// inflow - outflow + created - removed - (content - initial content) is zero to round-off.
 struct FlowTotals {
   double inflow = 0.0;          // through held mouths and domains and from sources, into the model
   double outflow = 0.0;         // out of the model through held mouths and domains
   double initialContent = 0.0;  // of the domains when the flow came on
-  double created = 0.0;         // content given to domains that opened, from the initial pressure field
-  double removed = 0.0;         // content of domains that closed without a successor
+  // Content given to domains that opened (from the initial pressure field) or by a steady solve,
+  // and content of domains that closed without a successor or taken by a steady solve.
+  double created = 0.0;
+  double removed = 0.0;
   long long subSteps = 0;
   long long networkChanges = 0;  // steps whose network had domains other than the step before's
 };

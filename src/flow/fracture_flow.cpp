@@ -7,6 +7,7 @@
 #include "core/errors.hpp"
 #include "core/shown.hpp"
 #include "flow/flow_network.hpp"
+#include "flow/flow_solve.hpp"
 
 namespace vdec {
 
@@ -123,10 +124,58 @@ void applyDomainPressures(Model& m) {
   }
 }
 
+namespace {
+
+// How far from steady the flow is: the domains' net inflow over the flow the knots would pass
+// under the largest pressure in the model (a dead-end network at rest passes none at all).
+// Besides, for the schemes that set the pressures by a solve (steady has no net inflow at all),
+// the largest change of a domain's pressure in the step over the pressure scale.
+void measureUnbalance(Model& m, const std::vector<double>& before) {
+  FlowState& fs = m.flow;
+  std::vector<int> fed(fs.boundaries.size(), 0);
+  for (const FlowDomain& d : fs.domains)
+    if (d.boundary >= 0 && !d.fixed) ++fed[d.boundary];
+  std::vector<double> net(fs.domains.size(), 0.0);
+  double scale = 0.0, conductance = 0.0;
+  for (const FlowDomain& d : fs.domains) scale = std::max(scale, std::abs(d.pressure));
+  for (const FlowKnot& k : fs.knots) {
+    if (k.domain[0] >= 0) net[k.domain[0]] -= k.flow;
+    if (k.domain[1] >= 0) net[k.domain[1]] += k.flow;
+    conductance += knotConductance(m, k);
+    if (k.boundary >= 0) scale = std::max(scale, std::abs(boundaryValue(m, fs.boundaries[k.boundary], k.point)));
+  }
+  const double through = conductance * std::max(scale, 1.0);
+  double unbalanced = 0.0;
+  for (std::size_t d = 0; d < fs.domains.size(); ++d) {
+    const FlowDomain& dom = fs.domains[d];
+    if (dom.fixed) continue;
+    // A source's inflow counts against the knots'.
+    if (dom.boundary >= 0 && fs.boundaries[dom.boundary].inflow)
+      net[d] += boundaryValue(m, fs.boundaries[dom.boundary], dom.centre) / fed[dom.boundary];
+    unbalanced += std::abs(net[d]);
+  }
+  fs.unbalancedRatio = through > 0.0 ? unbalanced / through : 0.0;
+  if (fs.fluid.scheme != FlowScheme::Explicit) {
+    double change = before.size() == fs.domains.size() ? 0.0 : 1.0;
+    for (std::size_t d = 0; d < before.size() && d < fs.domains.size(); ++d)
+      change = std::max(change, std::abs(fs.domains[d].pressure - before[d]) / std::max(scale, 1.0));
+    fs.unbalancedRatio = std::max(fs.unbalancedRatio, change);
+  }
+}
+
+}  // namespace
+
 void stepFlow(Model& m, double dt) {
   FlowState& fs = m.flow;
+  std::vector<double> before;
+  for (const FlowDomain& d : fs.domains) before.push_back(d.pressure);
   buildFlowNetwork(m, true);
   holdFixedDomains(m);
+  if (fs.fluid.scheme != FlowScheme::Explicit) {
+    solveFlow(m, dt, fs.fluid.scheme == FlowScheme::Steady);
+    measureUnbalance(m, before);
+    return;
+  }
   const double kw = fs.fluid.bulkModulus;
   const double dtFluid = fluidTimeStep(m);
   const double subSteps = std::isfinite(dtFluid) ? std::ceil(dt / (fs.fluid.stepFraction * dtFluid)) : 1.0;
@@ -192,26 +241,7 @@ void stepFlow(Model& m, double dt) {
     }
   }
   fs.totals.subSteps += n;
-  // How far from steady the flow is: the domains' net inflow over the flow the knots would pass
-  // under the largest pressure in the model (a dead-end network at rest passes none at all).
-  std::vector<double> net(fs.domains.size(), 0.0);
-  double scale = 0.0, conductance = 0.0;
-  for (const FlowDomain& d : fs.domains) scale = std::max(scale, std::abs(d.pressure));
-  for (const FlowKnot& k : fs.knots) {
-    if (k.domain[0] >= 0) net[k.domain[0]] -= k.flow;
-    if (k.domain[1] >= 0) net[k.domain[1]] += k.flow;
-    conductance += knotConductance(m, k);
-    if (k.boundary >= 0) scale = std::max(scale, std::abs(boundaryValue(m, fs.boundaries[k.boundary], k.point)));
-  }
-  const double through = conductance * std::max(scale, 1.0);
-  double unbalanced = 0.0;
-  for (std::size_t d = 0; d < fs.domains.size(); ++d) {
-    const FlowDomain& dom = fs.domains[d];
-    if (dom.fixed) continue;
-    if (dom.boundary >= 0) net[d] += rate[dom.boundary];  // a source's flow counts against the knots'
-    unbalanced += std::abs(net[d]);
-  }
-  fs.unbalancedRatio = through > 0.0 ? unbalanced / through : 0.0;
+  measureUnbalance(m, before);
 }
 
 double fluidMechanicalTimeStep(const Model& m, double frac) {
@@ -269,7 +299,7 @@ double flowContent(const Model& m) {
 
 double flowImbalance(const Model& m) {
   const FlowTotals& t = m.flow.totals;
-  return t.inflow - t.outflow - (flowContent(m) - t.initialContent) - t.created + t.removed;
+  return t.inflow - t.outflow + t.created - t.removed - (flowContent(m) - t.initialContent);
 }
 
 }  // namespace vdec

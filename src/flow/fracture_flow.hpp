@@ -32,7 +32,7 @@ double fluidTimeStep(const Model& model);
 // times 1.3-28 with it; gridpoints: half the critical step of it alone.
 double fluidMechanicalTimeStep(const Model& model, double frac);
 
-// The fluid balance now: inflow - outflow - (content - initial) - created + removed (m^2).
+// The fluid balance now: inflow - outflow + created - removed - (content - initial) (m^2).
 double flowImbalance(const Model& model);
 double flowContent(const Model& model);
 

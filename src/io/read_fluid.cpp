@@ -64,6 +64,15 @@ void readFluid(TableReader& top, SceneDefinition& scene) {
     else if (law != "linear") t->fail("bingham_law", "unknown law '" + law + "'; use linear or buckingham");
     if (t->has("bingham_law") && f.yieldStress == 0.0)
       t->fail("bingham_law", "applies to a Bingham fluid: give yield_stress > 0 too");
+    const std::string scheme = t->string("scheme", "explicit");
+    if (scheme == "implicit") f.scheme = FlowScheme::Implicit;
+    else if (scheme == "steady") f.scheme = FlowScheme::Steady;
+    else if (scheme != "explicit") t->fail("scheme", "unknown scheme '" + scheme + "'; use explicit, implicit or steady");
+    if (f.scheme != FlowScheme::Explicit && f.yieldStress > 0.0)
+      t->fail("scheme", "'" + scheme + "' solves the flow of a Newtonian fluid; a Bingham fluid (yield_stress > 0) flows "
+                        "by the explicit scheme only");
+    if (f.scheme != FlowScheme::Explicit && t->has("step_fraction"))
+      t->fail("step_fraction", "sets the explicit scheme's sub-step; the '" + scheme + "' scheme takes none");
     f.initialPressure = t->number("initial_pressure", 0.0);
     if (t->has("water_table")) f.waterTable = t->number("water_table");
     if (t->has("step_fraction")) {

@@ -1,0 +1,178 @@
+#include "flow/flow_solve.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "core/shown.hpp"
+#include "flow/flow_network.hpp"
+#include "flow/fracture_flow.hpp"
+
+namespace vdec {
+
+void solveFlow(Model& m, double h, bool steady) {
+  FlowState& fs = m.flow;
+  const int n = static_cast<int>(fs.domains.size());
+  const double kw = fs.fluid.bulkModulus;
+  // Piezometric pressure p* = p + offset, offset = -rho_w g . x.
+  auto offset = [&](Vec2 at) { return -fs.fluid.density * dot(m.gravity, at); };
+  std::vector<double> conductance(fs.knots.size());
+  for (std::size_t k = 0; k < fs.knots.size(); ++k) conductance[k] = knotConductance(m, fs.knots[k]);
+  auto heldMouth = [&](const FlowKnot& k) { return k.boundary >= 0; };
+
+  // Steady: only the domains from which fluid can reach a held pressure have a steady pressure;
+  // the others keep theirs (no flow reaches or leaves them).
+  std::vector<char> reached(n, steady ? 0 : 1);
+  if (steady) {
+    std::vector<int> stack;
+    for (int d = 0; d < n; ++d)
+      if (fs.domains[d].fixed) reached[d] = 1, stack.push_back(d);
+    for (const FlowKnot& k : fs.knots)
+      if (heldMouth(k) && conductance[&k - fs.knots.data()] > 0.0)
+        for (const int d : k.domain)
+          if (d >= 0 && !reached[d]) reached[d] = 1, stack.push_back(d);
+    std::vector<std::vector<int>> links(n);
+    for (std::size_t k = 0; k < fs.knots.size(); ++k) {
+      const FlowKnot& knot = fs.knots[k];
+      if (knot.domain[0] >= 0 && knot.domain[1] >= 0 && conductance[k] > 0.0) {
+        links[knot.domain[0]].push_back(knot.domain[1]);
+        links[knot.domain[1]].push_back(knot.domain[0]);
+      }
+    }
+    while (!stack.empty()) {
+      const int d = stack.back();
+      stack.pop_back();
+      for (const int e : links[d])
+        if (!reached[e]) reached[e] = 1, stack.push_back(e);
+    }
+  }
+  std::vector<double> source(n, 0.0);
+  std::vector<int> fed(fs.boundaries.size(), 0);
+  for (const FlowDomain& d : fs.domains)
+    if (d.boundary >= 0 && !d.fixed && fs.boundaries[d.boundary].inflow) ++fed[d.boundary];
+  for (int d = 0; d < n; ++d) {
+    const FlowDomain& dom = fs.domains[d];
+    if (dom.boundary < 0 || dom.fixed || !fs.boundaries[dom.boundary].inflow) continue;
+    source[d] = boundaryValue(m, fs.boundaries[dom.boundary], dom.centre) / fed[dom.boundary];
+    if (steady && !reached[d]) {
+      std::ostringstream s;
+      s << "steady flow has no solution: fluid flows into the domain at (" << shown(dom.centre.x) << ", "
+        << shown(dom.centre.y) << ") and cannot leave, no held pressure being reachable from it; hold a pressure "
+        << "where it can leave ([[flow_boundary]] pressure), or use [fluid] scheme = \"implicit\" or \"explicit\"";
+      throw InstabilityError(s.str());
+    }
+  }
+
+  std::vector<int> unknown(n, -1);
+  int count = 0;
+  for (int d = 0; d < n; ++d)
+    if (!fs.domains[d].fixed && reached[d]) unknown[d] = count++;
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(count);
+  for (int d = 0; d < n; ++d) {
+    if (unknown[d] < 0) continue;
+    const FlowDomain& dom = fs.domains[d];
+    rhs[unknown[d]] += source[d];
+    if (!steady) {
+      const double storage = dom.area / (kw * h);
+      entries.emplace_back(unknown[d], unknown[d], storage);
+      rhs[unknown[d]] += storage * (dom.pressure + offset(dom.centre));
+    }
+  }
+  // Each side of a knot: an unknown, a known piezometric pressure, or shut (an impermeable mouth).
+  auto sideOf = [&](const FlowKnot& k, int i, int& u, double& known) {
+    const int d = k.domain[i];
+    if (d >= 0) {
+      u = unknown[d];
+      known = fs.domains[d].pressure + offset(fs.domains[d].centre);
+      return true;
+    }
+    u = -1;
+    if (!heldMouth(k)) return false;
+    known = boundaryValue(m, fs.boundaries[k.boundary], k.point) + offset(k.point);
+    return true;
+  };
+  for (std::size_t k = 0; k < fs.knots.size(); ++k) {
+    const double c = conductance[k];
+    int u[2];
+    double known[2];
+    if (!sideOf(fs.knots[k], 0, u[0], known[0]) || !sideOf(fs.knots[k], 1, u[1], known[1]) || c == 0.0) continue;
+    for (int i = 0; i < 2; ++i) {
+      if (u[i] < 0) continue;
+      entries.emplace_back(u[i], u[i], c);
+      if (u[1 - i] >= 0) entries.emplace_back(u[i], u[1 - i], -c);
+      else rhs[u[i]] += c * known[1 - i];
+    }
+  }
+  Eigen::VectorXd solved;
+  if (count > 0) {
+    Eigen::SparseMatrix<double> a(count, count);
+    a.setFromTriplets(entries.begin(), entries.end());
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
+    if (solver.info() == Eigen::Success) solved = solver.solve(rhs);
+    if (solver.info() != Eigen::Success || !solved.allFinite()) {
+      std::ostringstream s;
+      s << "the " << (steady ? "steady" : "implicit") << " flow solve over " << count << " domains failed at cycle "
+        << m.cycle << ": the network's conductances or areas are not of a size a double can take; check the joints' "
+        << "apertures and [fluid] viscosity and bulk_modulus";
+      throw InstabilityError(s.str());
+    }
+  }
+  // The flow through every knot from the solved pressures moves the fluid, as a sub-step does.
+  std::vector<double> piezometric(n);
+  for (int d = 0; d < n; ++d)
+    piezometric[d] = unknown[d] >= 0 ? solved[unknown[d]] : fs.domains[d].pressure + offset(fs.domains[d].centre);
+  for (std::size_t k = 0; k < fs.knots.size(); ++k) {
+    FlowKnot& knot = fs.knots[k];
+    int u[2];
+    double known[2];
+    if (!sideOf(knot, 0, u[0], known[0]) || !sideOf(knot, 1, u[1], known[1])) {
+      knot.flow = 0.0;
+      continue;
+    }
+    const double p0 = knot.domain[0] >= 0 ? piezometric[knot.domain[0]] : known[0];
+    const double p1 = knot.domain[1] >= 0 ? piezometric[knot.domain[1]] : known[1];
+    knot.flow = conductance[k] * (p0 - p1);
+    const double volume = knot.flow * h;
+    if (knot.domain[0] >= 0) fs.domains[knot.domain[0]].content -= volume;
+    else if (volume > 0.0) fs.totals.inflow += volume;
+    else fs.totals.outflow -= volume;
+    if (knot.domain[1] >= 0) fs.domains[knot.domain[1]].content += volume;
+    else if (volume > 0.0) fs.totals.outflow += volume;
+    else fs.totals.inflow -= volume;
+  }
+  for (int d = 0; d < n; ++d) {
+    FlowDomain& dom = fs.domains[d];
+    if (source[d] != 0.0) {
+      dom.content += source[d] * h;
+      fs.totals.inflow += source[d] * h;
+    }
+    if (dom.fixed) {
+      const double held = boundaryValue(m, fs.boundaries[dom.boundary], dom.centre);
+      const double content = dom.area * (1.0 + held / kw);
+      if (content > dom.content) fs.totals.inflow += content - dom.content;
+      else fs.totals.outflow += dom.content - content;
+      dom.content = content;
+      dom.pressure = held;
+    } else if (steady && unknown[d] >= 0) {
+      // No storage in a steady flow: the domain holds what its steady pressure compresses into
+      // it, the difference from what the flow left there given or taken by the solve.
+      dom.pressure = piezometric[d] - offset(dom.centre);
+      const double content = dom.area * (1.0 + dom.pressure / kw);
+      if (content > dom.content) fs.totals.created += content - dom.content;
+      else fs.totals.removed += dom.content - content;
+      dom.content = content;
+    } else {
+      dom.pressure = kw * (dom.content / dom.area - 1.0);
+    }
+  }
+  fs.subStep = h;
+  fs.subSteps = 1;
+  ++fs.totals.subSteps;
+}
+
+}  // namespace vdec
