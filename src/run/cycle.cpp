@@ -379,7 +379,9 @@ void Cycle::recordHistories(bool initial) {
     const HistorySubject subject = findHistorySubject(h.quantity);
     // Positions are those just reached; zone stresses, joints and model measures were formed in
     // this step from the positions at its start.
-    const bool block = subject == HistorySubject::Block || subject == HistorySubject::Gridpoint;
+    // The fluid's state is that the step's flow stage left, after the motion, at `time` too.
+    const bool block = subject == HistorySubject::Block || subject == HistorySubject::Gridpoint ||
+                       subject == HistorySubject::Fluid;
     if (initial && !block) continue;
     if (initial) series.sampledAtCycleZero = true;
     const bool halved = appendHistorySample(series, block || initial ? model_.time : model_.time - dt_,

@@ -1,5 +1,7 @@
 #include "run/history.hpp"
 
+#include "flow/fracture_flow.hpp"
+
 #include <numbers>
 
 namespace vdec {
@@ -48,6 +50,13 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::ZoneSyy, "zone.syy", S::Zone, "Pa", "zone stress syy, tension positive"},
       {Q::ZoneSxy, "zone.sxy", S::Zone, "Pa", "zone stress sxy"},
       {Q::ZoneSzz, "zone.szz", S::Zone, "Pa", "zone stress szz (plane strain), tension positive"},
+      {Q::DomainPressure, "domain.pressure", S::Fluid, "Pa", "pressure of the fluid domain whose centre is nearest the point"},
+      {Q::KnotFlow, "knot.flow", S::Fluid, "m^2/s", "flow through the knot nearest the point, from its domain_0 side to its domain_1 side"},
+      {Q::KnotAperture, "knot.aperture", S::Fluid, "m", "hydraulic aperture of the knot nearest the point"},
+      {Q::FluidInflow, "fluid.inflow", S::Fluid, "m^2", "fluid that has entered the model through held mouths and domains and from sources"},
+      {Q::FluidOutflow, "fluid.outflow", S::Fluid, "m^2", "fluid that has left the model through held mouths and domains"},
+      {Q::FluidContent, "fluid.content", S::Fluid, "m^2", "fluid the domains hold, as its volume at zero pressure"},
+      {Q::FluidImbalance, "fluid.imbalance", S::Fluid, "m^2", "inflow - outflow + created - removed - (content - initial content): zero to round-off"},
   };
   return table;
 }
@@ -134,6 +143,35 @@ double meanZoneStress(const Model& m, const std::vector<double>& component) {
   return area > 0.0 ? sum / area : 0.0;
 }
 
+double fluidMeasure(const Model& m, const HistorySpec& h) {
+  const FlowState& fs = m.flow;
+  auto nearest = [&h](const auto& items, auto where) {
+    int best = -1;
+    double distance = INFINITY;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const double d = norm(where(items[i]) - h.point);
+      if (d < distance) distance = d, best = static_cast<int>(i);
+    }
+    return best;
+  };
+  switch (h.quantity) {
+    case HistoryQuantity::DomainPressure: {
+      const int d = nearest(fs.domains, [](const FlowDomain& x) { return x.centre; });
+      return d < 0 ? 0.0 : fs.domains[d].pressure;
+    }
+    case HistoryQuantity::KnotFlow:
+    case HistoryQuantity::KnotAperture: {
+      const int k = nearest(fs.knots, [](const FlowKnot& x) { return x.point; });
+      if (k < 0) return 0.0;
+      return h.quantity == HistoryQuantity::KnotFlow ? fs.knots[k].flow : fs.knots[k].aperture;
+    }
+    case HistoryQuantity::FluidInflow: return fs.totals.inflow;
+    case HistoryQuantity::FluidOutflow: return fs.totals.outflow;
+    case HistoryQuantity::FluidContent: return flowContent(m);
+    default: return flowImbalance(m);
+  }
+}
+
 }  // namespace
 
 bool appendHistorySample(HistorySeries& series, double t, double value, std::size_t limit) {
@@ -186,7 +224,8 @@ double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) 
     case HistoryQuantity::MeanSxx: return meanZoneStress(m, m.zones.sxx);
     case HistoryQuantity::MeanSyy: return meanZoneStress(m, m.zones.syy);
     case HistoryQuantity::MeanSxy: return meanZoneStress(m, m.zones.sxy);
-    default: return jointMeasure(m, h);
+    default:
+      return findHistorySubject(h.quantity) == HistorySubject::Fluid ? fluidMeasure(m, h) : jointMeasure(m, h);
   }
 }
 

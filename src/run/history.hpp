@@ -22,10 +22,13 @@ enum class HistoryQuantity {
   ZoneSxx, ZoneSyy, ZoneSxy, ZoneSzz,
   MeanSxx, MeanSyy, MeanSxy,
   BlockAccelerationX, BlockAccelerationY, GridpointAccelerationX, GridpointAccelerationY,
+  DomainPressure, KnotFlow, KnotAperture, FluidInflow, FluidOutflow, FluidContent, FluidImbalance,
 };
 
 
-enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone };
+// Fluid: the fluid's account (fluid.*), or the domain or knot nearest a point at each sample
+// (domain.*, knot.*): the network changes with the contacts, so a point, not an id, names them.
+enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone, Fluid };
 
 struct HistoryQuantityInfo {
   HistoryQuantity quantity;
@@ -49,6 +52,7 @@ struct HistorySpec {
   int gridpoint = -1;   // Gridpoint subject
   int zone = -1;        // Zone subject
   int every = 1;
+  Vec2 point;           // Fluid subject: domain.* and knot.* quantities
 };
 
 // Acceleration quantities are formed by the cycle from the velocity they are the rate of:
@@ -85,7 +89,7 @@ struct HistorySeries {
 
 template <class A>
 void visitState(A& a, HistorySpec& h) {
-  a(h.name), a(h.quantity), a(h.block), a(h.otherBlock), a(h.gridpoint), a(h.zone), a(h.every);
+  a(h.name), a(h.quantity), a(h.block), a(h.otherBlock), a(h.gridpoint), a(h.zone), a(h.every), a(h.point);
 }
 
 template <class A>

@@ -410,6 +410,9 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
     if (m.blocks.deformable[h.block])
       d.origin.fail("block", "block '" + m.blocks.name[h.block] + "' is deformable: its motion is its gridpoints'; use "
                              "gridpoint.* or zone.* quantities with a point");
+  } else if (info->subject == HistorySubject::Fluid) {
+    if (!m.flow.present) d.origin.fail("quantity", d.quantity + " is a fluid-flow quantity, and the scene has no [fluid] table");
+    if (d.point) h.point = *d.point;
   } else if (info->subject == HistorySubject::Joint) {
     h.block = blockNamed(m, d.origin, "blocks", d.blocks[0]);
     h.otherBlock = blockNamed(m, d.origin, "blocks", d.blocks[1]);

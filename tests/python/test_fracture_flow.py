@@ -150,3 +150,68 @@ def test_fluid_results_do_not_depend_on_the_thread_count(tmp_path):
     assert one.returncode == 0 and two.returncode == 0, (one.stderr, two.stderr)
     for key in ("domains", "knots", "fluid", "gridpoints"):
         assert a[key] == b[key], key
+
+
+HISTORIES = """
+[[history]]
+name = "p"
+quantity = "domain.pressure"
+point = [0.9, 0.0]
+every = 100
+[[history]]
+name = "q"
+quantity = "knot.flow"
+point = [0.0, 0.0]
+every = 100
+[[history]]
+name = "a"
+quantity = "knot.aperture"
+point = [0.5, 0.0]
+every = 100
+[[history]]
+name = "in"
+quantity = "fluid.inflow"
+every = 100
+[[history]]
+name = "out"
+quantity = "fluid.outflow"
+every = 100
+[[history]]
+name = "content"
+quantity = "fluid.content"
+every = 100
+[[history]]
+name = "balance"
+quantity = "fluid.imbalance"
+every = 100
+"""
+
+
+@pytest.mark.requirements("REQ-FLOW-010")
+def test_fluid_histories_sample_the_domain_and_knot_nearest_their_point_and_the_account(tmp_path):
+    done, results = run(tmp_path, BASE + HISTORIES)
+    assert done.returncode == 0, done.stderr
+    h = {name: series["value"] for name, series in results["histories"].items()}
+    assert all(len(v) == 5 for v in h.values()), "cycles 0, 100, ..., 400"
+    domains, knots, balance = results["domains"], results["knots"], results["fluid"]["balance"]
+
+    def nearest(table, x, y):
+        return min(range(len(table["x0"])), key=lambda i: (table["x0"][i] - x) ** 2 + (table["y0"][i] - y) ** 2)
+
+    assert h["p"][-1] == domains["pressure"][nearest(domains, 0.9, 0.0)]
+    assert h["q"][-1] == knots["flow"][nearest(knots, 0.0, 0.0)]
+    assert h["a"][-1] == knots["aperture"][nearest(knots, 0.5, 0.0)]
+    assert h["in"][-1] == balance["inflow"] and h["out"][-1] == balance["outflow"]
+    assert h["content"][-1] == balance["content"] and h["content"][0] == balance["initial_content"]
+    assert h["q"][-1] > 0, "the fluid comes in at the held mouth"
+    scale = balance["inflow"] + balance["initial_content"]
+    assert max(abs(v) for v in h["balance"]) <= 1e-12 * scale
+
+
+@pytest.mark.requirements("REQ-FLOW-009")
+def test_fluid_histories_need_fluid_and_a_point(tmp_path):
+    done, _ = run(tmp_path, NO_FLUID.split("[[flow_boundary]]")[0].replace("aperture = 1e-4\nresidual_aperture = 1e-5\n", "")
+                  + "[[history]]\nname = \"p\"\nquantity = \"domain.pressure\"\npoint = [0.5, 0.0]\n")
+    assert done.returncode == 3 and "domain.pressure is a fluid-flow quantity" in done.stderr, done.stderr
+    done, _ = run(tmp_path, BASE + "[[history]]\nname = \"p\"\nquantity = \"knot.flow\"\n", name="nopoint")
+    assert done.returncode == 3 and "point" in done.stderr, done.stderr
