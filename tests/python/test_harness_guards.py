@@ -133,7 +133,7 @@ BAD_PROBLEMS = [
     ('{ kind = "final", history = "h" }', '{ kind = "max", history = "h", window = [1.0, 0.5] }',
      r"check\[0\]\.extract\.window", "t_start < t_end"),
     ('{ kind = "final", history = "h" }', '{ kind = "run_meta", path = "histories.h" }',
-     r"check\[0\]\.extract\.path", "into run or energy"),
+     r"check\[0\]\.extract\.path", "into run, energy or fluid"),
     ('{ kind = "final", history = "h" }', '{ kind = "value_at", history = "h", t = "late" }',
      r"check\[0\]\.extract\.t", "not a number"),
     ('norm = "scalar"', 'norm = "L3"', r"check\[0\]\.norm", "unknown norm 'L3'"),
@@ -154,7 +154,7 @@ BAD_PROBLEMS = [
     ('{ function = "rigid_blocks.resting_normal_force", params = { mass = 1.0, g = 1.0 } }',
      '{ constant = 1.0, params = { a = 1 } }', r"check\[0\]\.reference\.params", "not to a constant"),
     ("params = { mass = 1.0, g = 1.0 } }", 'params = { mass = 1.0 }, run_params = { g = "histories.h" } }',
-     r"check\[0\]\.reference\.run_params\.g", "into run or energy"),
+     r"check\[0\]\.reference\.run_params\.g", "into run, energy or fluid"),
     ("params = { mass = 1.0, g = 1.0 } }", 'params = { mass = 1.0, g = 1.0 }, run_params = { g = "run.dt" } }',
      r"check\[0\]\.reference\.run_params\.g", "also given in params"),
     ("params = { mass = 1.0, g = 1.0 } }", 'params = { mass = 1.0, g = 1.0 }, run_params = { dt = "run.dt" } }',
@@ -273,3 +273,34 @@ def test_run_params_pass_a_value_of_the_checked_run_to_the_reference(tmp_path, m
     metric = judge_check(check, missing)
     assert not metric["pass"] and "run_params" in metric["message"] and "run.dt" in metric["message"]
     assert check.reference.params == {"scale": 2.0}           # the problem's own params are left as written
+
+
+@pytest.mark.requirements("REQ-QA-002")
+def test_fluid_fields_and_the_fluid_balance_can_be_checked(tmp_path):
+    # Fracture-flow problems read the domains and knots as fields and the mass balance as run_meta.
+    text = mutated('extract = { kind = "final", history = "h" }',
+                   'extract = { kind = "field_mean", of = "knots", quantity = "flow" }')
+    text += '''
+[[check]]
+quantity = "imbalance"
+extract = { kind = "run_meta", path = "fluid.balance.imbalance" }
+reference = { constant = 0.0 }
+norm = "scalar"
+atol = 1e-18
+justification = "j"
+tolerance_basis = "derived"
+
+[[check]]
+quantity = "pressures"
+extract = { kind = "field", of = "domains", quantity = "pressure" }
+reference = { constant = 0.0 }
+norm = "Linf"
+atol = 1.0
+justification = "j"
+tolerance_basis = "derived"
+'''
+    problem = load_problem(write_problem(tmp_path, text))
+    assert [c.extract.get("of", c.extract.get("path")) for c in problem.checks] == \
+        ["knots", "fluid.balance.imbalance", "domains"]
+    with pytest.raises(ProblemError, match=r"check\[0\]\.extract\.of': 'voids' is not one of .*\"knots\""):
+        load_problem(write_problem(tmp_path, text.replace('of = "knots"', 'of = "voids"')))

@@ -31,8 +31,9 @@ closure (positive closing) from a block's displacement (positive up); default 1.
     phase_end      history, phase [scale]             the last sample of the history at or before the end of the
                                                       phase of that name (results["phases"]): a phased run's
                                                       state after each phase
-    run_meta       path                               a number at a dotted path in results["run"] or
-                                                      results["energy"], e.g. "energy.largest_excess"
+    run_meta       path                               a number at a dotted path in results["run"],
+                                                      results["energy"] or results["fluid"], e.g.
+                                                      "energy.largest_excess", "fluid.balance.imbalance"
     exit_code      (none)                             the exit code of the run
     differences    against, keys                      how many values differ between this run's results.json
                                                       and the run `against` ("plain" or a variant's name), over

@@ -42,7 +42,7 @@ Keys of problem.toml:
              or { constant = VALUE }   required; function is looked up in the `analytic` package
                                   run_params = { dt = "run.dt" } (optional, function references): further
                                   keyword arguments read from the results.json of the run the check
-                                  reads (a dotted path into run or energy), e.g. the time step the
+                                  reads (a dotted path into run, energy or fluid), e.g. the time step the
                                   solver chose, for a reference of the discrete scheme
     norm = "scalar"               required: scalar | upper_bound | equal (scalar extracts), L2 | Linf (series)
     rtol = 1e-3                   at least one of rtol, atol (>= 0), not both zero for norms scalar, L2 and
@@ -98,6 +98,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from vdec_verify.extract import KINDS
+from vdec_verify.fields import FLOW_QUANTITIES
 from vdec_verify.norms import NORMS, SCALAR_NORMS, SERIES_NORMS
 
 REQUIREMENT_ID = re.compile(r"^REQ-[A-Z]+-\d{3}$")
@@ -128,6 +129,12 @@ REFINEMENT_KEYS = ("expected_order", "order_tolerance", "justification", "asympt
 LEVEL_KEYS = ("name", "h", "overrides", "level")
 # Norms whose error is >= 0 and shrinks with the zone size: the ones an order can be fitted to.
 STUDY_NORMS = ("scalar", "L2", "Linf")
+# The results.json objects a run_meta path (or a reference's run_params) may start in; "fluid" holds
+# the fracture flow's counts and mass balance.
+RUN_META_ROOTS = ("run", "energy", "fluid")
+RUN_META_ROOTS_TEXT = "run, energy or fluid"
+# What a field extract reads: deformable-block fields, contacts, and the fluid's domains and knots.
+FIELD_SOURCES = ("zones", "gridpoints", "contacts") + tuple(FLOW_QUANTITIES)
 REFERENCE_KEYS = ("function", "params", "component", "constant", "run_params")
 
 
@@ -337,8 +344,8 @@ def _extract_table(errors, table, where):
         if not (isinstance(w, list) and len(w) == 2 and all(_is_number(v) for v in w) and w[0] < w[1]):
             errors.add(f"{where}.window", f"{w!r} is not [t_start, t_end] with t_start < t_end")
     if kind_name in ("field", "field_mean", "field_peak", "field_extent"):
-        if table.get("of") not in ("zones", "gridpoints", "contacts"):
-            errors.add(f"{where}.of", f"{table.get('of')!r} is not \"zones\", \"gridpoints\" or \"contacts\"")
+        if table.get("of") not in FIELD_SOURCES:
+            errors.add(f"{where}.of", f"{table.get('of')!r} is not one of " + ", ".join(f'"{o}"' for o in FIELD_SOURCES))
         for key in ("x", "y", "r", "angle", "centre"):
             if key in table and not (isinstance(table[key], list) and len(table[key]) == 2
                                      and all(_is_number(v) for v in table[key])):
@@ -362,8 +369,8 @@ def _extract_table(errors, table, where):
             errors.add(f"{where}.function", str(e))
     if "path" in table:
         path = table["path"]
-        if not isinstance(path, str) or path.split(".")[0] not in ("run", "energy") or "." not in path:
-            errors.add(f"{where}.path", f"{path!r} is not a dotted path into run or energy, e.g. 'energy.initial'")
+        if not isinstance(path, str) or path.split(".")[0] not in RUN_META_ROOTS or "." not in path:
+            errors.add(f"{where}.path", f"{path!r} is not a dotted path into {RUN_META_ROOTS_TEXT}, e.g. 'energy.initial'")
     return kind
 
 
@@ -392,8 +399,8 @@ def _reference(errors, table, where, series):
         errors.add(f"{where}.run_params", "must be a table keyword = \"run.PATH\" (a number in the run's results.json)")
         run_params = {}
     for key, path in run_params.items():
-        if not isinstance(path, str) or path.split(".")[0] not in ("run", "energy") or "." not in path:
-            errors.add(f"{where}.run_params.{key}", f"{path!r} is not a dotted path into run or energy, e.g. 'run.dt'")
+        if not isinstance(path, str) or path.split(".")[0] not in RUN_META_ROOTS or "." not in path:
+            errors.add(f"{where}.run_params.{key}", f"{path!r} is not a dotted path into {RUN_META_ROOTS_TEXT}, e.g. 'run.dt'")
         if key in params:
             errors.add(f"{where}.run_params.{key}", "is also given in params: give it in one of them")
     if component is not None and not isinstance(component, str) and (
