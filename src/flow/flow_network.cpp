@@ -210,6 +210,31 @@ void buildFlowNetwork(Model& m, bool carry) {
   std::vector<Loop> loops;
   std::vector<int> loopOf;
   auto walk = [&](int s, auto&& piece) { walkSide(vx, sides, s, piece); };
+  // A loop's area (signed: clockwise round a void), perimeter, joint volume at the hydraulic
+  // apertures and centre, from its sides' places.
+  auto measure = [&](Loop& loop) {
+    loop.signedArea = loop.perimeter = loop.hydraulic = 0.0;
+    Vec2 weighted;
+    for (const int s : loop.sides) {
+      double length = 0.0;
+      walk(s, [&](int e, double t0, double t1) {
+        const VertexGeometry& g = vx.geometry[e];
+        const Vec2 p0 = g.position + (t0 * g.edgeLength) * g.edgeDirection;
+        const Vec2 p1 = g.position + (t1 * g.edgeLength) * g.edgeDirection;
+        const double l = pieceLength(p0, p1);
+        length += l;
+        weighted += (0.5 * l) * (p0 + p1);
+        loop.signedArea += 0.5 * cross(p0, p1);
+      });
+      // Across the knot to the other block.
+      const int n = sides[s].next;
+      loop.signedArea += 0.5 * cross(sidePoint(sides[n]), sidePoint(sides[other(n)]));
+      loop.perimeter += length;
+      const double a0 = knots[sides[s].knot].aperture, a1 = knots[sides[n].knot].aperture;
+      loop.hydraulic += 0.25 * length * (a0 + a1);
+    }
+    loop.centre = loop.perimeter > 0.0 ? (1.0 / loop.perimeter) * weighted : sidePoint(sides[loop.sides.front()]);
+  };
   // A knot with the same void on both sides (the corners meeting diagonally at a crossing of
   // joints, or blocks touching corner to corner with the outside all round) parts nothing: it
   // leaves the network, so that the rounded corners' gap it measures is no aperture of a joint.
@@ -262,34 +287,17 @@ void buildFlowNetwork(Model& m, bool carry) {
       Loop loop;
       loop.key = INT64_MAX;
       double smallestBlock = INFINITY;
-      Vec2 weighted;
       for (int s = static_cast<int>(s0); loopOf[s] < 0; s = other(sides[s].next)) {
         loopOf[s] = static_cast<int>(loops.size());
         loop.sides.push_back(s);
         loop.key = std::min(loop.key, sidePlace[s].key);
         smallestBlock = std::min(smallestBlock, std::abs(blockArea[sides[s].block]));
-        double length = 0.0;
-        walk(s, [&](int e, double t0, double t1) {
-          const VertexGeometry& g = vx.geometry[e];
-          const Vec2 p0 = g.position + (t0 * g.edgeLength) * g.edgeDirection;
-          const Vec2 p1 = g.position + (t1 * g.edgeLength) * g.edgeDirection;
-          const double l = pieceLength(p0, p1);
-          length += l;
-          weighted += (0.5 * l) * (p0 + p1);
-          loop.signedArea += 0.5 * cross(p0, p1);
-        });
-        // Across the knot to the other block.
-        const int n = sides[s].next;
-        loop.signedArea += 0.5 * cross(sidePoint(sides[n]), sidePoint(sides[other(n)]));
-        loop.perimeter += length;
-        const double a0 = knots[sides[s].knot].aperture, a1 = knots[sides[n].knot].aperture;
-        loop.hydraulic += 0.25 * length * (a0 + a1);
       }
+      measure(loop);
       // The loop around the outside runs counter-clockwise around blocks: a positive area of the
       // order of theirs. A void's runs clockwise (negative); a closed joint's sliver is of the
       // order of its overlap times its length, far below any block's area.
       loop.outside = loop.signedArea > 0.25 * smallestBlock;
-      loop.centre = loop.perimeter > 0.0 ? (1.0 / loop.perimeter) * weighted : sidePoint(sides[s0]);
       loops.push_back(std::move(loop));
     }
     std::vector<int> kept;
@@ -304,6 +312,34 @@ void buildFlowNetwork(Model& m, bool carry) {
     }
     knots = std::move(keptKnots);
     knotContact = std::move(keptContacts);
+  }
+
+  // A joint's mouth is the corner where its blocks end, not the rounded corner's contact d in
+  // from it: a mouth knot's side within 1.5 d of a block's vertex moves to that vertex, so that
+  // the domain behind it holds the joint up to its end, as the knot's length (half the shared
+  // face) assumes. Both blocks' sides move to their own corners, wherever the contact belongs.
+  const double reach = 1.5 * m.roundingLength;
+  bool moved = false;
+  for (std::size_t k = 0; k < knots.size(); ++k) {
+    if (!loops[loopOf[2 * k]].outside && !loops[loopOf[2 * k + 1]].outside) continue;
+    for (const std::size_t s : {2 * k, 2 * k + 1}) {
+      FlowSide& side = sides[s];
+      if (side.t == 0.0) continue;
+      const double length = vx.geometry[side.vertex].edgeLength;
+      const int to = side.t * length <= reach ? side.vertex : (1.0 - side.t) * length <= reach ? vx.next[side.vertex] : -1;
+      if (to < 0) continue;
+      side.vertex = to;
+      side.t = 0.0;
+      side.order = orderOf[to];
+      sidePlace[s].order = orderOf[to];
+      sidePlace[s].t = 0.0;
+      moved = true;
+    }
+  }
+  if (moved) {
+    for (std::size_t s = 0; s < sides.size(); ++s)
+      sides[s].wraps = sides[s].next == static_cast<int>(s) || !before(sidePlace[s], sidePlace[sides[s].next]);
+    for (Loop& loop : loops) measure(loop);
   }
 
   // Domains in the order of their keys.

@@ -1,7 +1,7 @@
 """The source folders form layers, and no file includes from a layer above its own.
 
 Data flows one way (docs/design.md): the model's types at the bottom, then the geometry and the
-joint laws, contacts, motion, zones and boundaries, the run layer that orchestrates them, the
+joint laws, contacts, motion, zones, boundaries and fluid flow, the run layer that orchestrates them, the
 scene definitions and the builder that makes a model of them, the readers and writers, and the
 command line on top. An include that
 reaches upward ties a component to what is built on it; this test fails on the first one, naming
@@ -20,7 +20,7 @@ LAYERS = {
     "geometry": 1, "joint": 1,
     "contact": 2,
     "motion": 3,
-    "zone": 4, "boundary": 4,
+    "zone": 4, "boundary": 4, "flow": 4,
     "run": 5,
     "scene": 6,
     "io": 7,
@@ -28,7 +28,7 @@ LAYERS = {
 }
 # Header-only value types that the model stores, and that include nothing of vdec's own: they
 # sit with their component but belong to the bottom layer.
-BOTTOM_LAYER_HEADERS = {"boundary/time_function.hpp", "zone/mohr_coulomb.hpp"}
+BOTTOM_LAYER_HEADERS = {"boundary/time_function.hpp", "zone/mohr_coulomb.hpp", "flow/flow_state.hpp"}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/([^"]+)"', re.M)
 
 
