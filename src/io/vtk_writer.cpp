@@ -22,19 +22,34 @@ struct Grid {
   // Point data: displacement and velocity (rigid block vertices take their block's).
   std::vector<Vec2> displacement, velocity;
   // Cell data.
-  std::vector<int> kind;  // 0 zone, 1 rigid block, 2 contact
+  std::vector<int> kind;  // 0 zone, 1 rigid block, 2 contact, 3 fluid domain, 4 flow knot
   std::vector<int> block;
   std::vector<double> sxx, syy, sxy, szz, normalForce, shearForce;
+  bool fluid = false;  // the fluid's arrays below, with [fluid] only
+  std::vector<double> pressure, area, flow, aperture;
 };
 
 void cellDefaults(Grid& g, int kind, int block) {
   g.kind.push_back(kind);
   g.block.push_back(block);
   for (auto* v : {&g.sxx, &g.syy, &g.sxy, &g.szz, &g.normalForce, &g.shearForce}) v->push_back(0.0);
+  if (g.fluid)
+    for (auto* v : {&g.pressure, &g.area, &g.flow, &g.aperture}) v->push_back(0.0);
+}
+
+// A vertex cell at `at`, of no displacement or velocity.
+void pointCell(Grid& g, Vec2 at, int kind, int block) {
+  g.cells.push_back({static_cast<int>(g.points.size())});
+  g.points.push_back(at);
+  g.displacement.push_back({});
+  g.velocity.push_back({});
+  g.types.push_back(kVertex);
+  cellDefaults(g, kind, block);
 }
 
 Grid collect(const Model& m) {
   Grid g;
+  g.fluid = m.flow.present;
   const Gridpoints& gp = m.gridpoints;
   for (int i = 0; i < gp.size(); ++i) {
     g.points.push_back(gp.position[i]);
@@ -67,14 +82,19 @@ Grid collect(const Model& m) {
     cellDefaults(g, 1, k);
   }
   for (const Contact& c : m.contacts) {
-    g.cells.push_back({static_cast<int>(g.points.size())});
-    g.points.push_back(contactGeometry(m, c).point);
-    g.displacement.push_back({});
-    g.velocity.push_back({});
-    g.types.push_back(kVertex);
-    cellDefaults(g, 2, c.blockA);
+    pointCell(g, contactGeometry(m, c).point, 2, c.blockA);
     g.normalForce.back() = m.normalForce(c);
     g.shearForce.back() = m.shearForce(c);
+  }
+  for (const FlowDomain& d : m.flow.domains) {
+    pointCell(g, d.centre, 3, -1);
+    g.pressure.back() = d.pressure;
+    g.area.back() = d.area;
+  }
+  for (const FlowKnot& k : m.flow.knots) {
+    pointCell(g, k.point, 4, k.blockA);
+    g.flow.back() = k.flow;
+    g.aperture.back() = k.aperture;
   }
   return g;
 }
@@ -158,7 +178,9 @@ void VtkSeries::write(const Model& m) {
   vectorArray(out, "displacement", g.displacement);
   vectorArray(out, "velocity", g.velocity);
   out << "</PointData>\n<CellData>\n";
-  dataArray(out, "kind (0 zone, 1 rigid block, 2 contact)", g.kind, "Int32");
+  dataArray(out, g.fluid ? "kind (0 zone, 1 rigid block, 2 contact, 3 fluid domain, 4 flow knot)"
+                         : "kind (0 zone, 1 rigid block, 2 contact)",
+            g.kind, "Int32");
   dataArray(out, "block", g.block, "Int32");
   dataArray(out, "sxx", g.sxx, "Float64");
   dataArray(out, "syy", g.syy, "Float64");
@@ -166,6 +188,12 @@ void VtkSeries::write(const Model& m) {
   dataArray(out, "szz", g.szz, "Float64");
   dataArray(out, "normal_force", g.normalForce, "Float64");
   dataArray(out, "shear_force", g.shearForce, "Float64");
+  if (g.fluid) {
+    dataArray(out, "pressure", g.pressure, "Float64");
+    dataArray(out, "domain_area", g.area, "Float64");
+    dataArray(out, "flow", g.flow, "Float64");
+    dataArray(out, "aperture", g.aperture, "Float64");
+  }
   out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
   file.commit();
   written_.emplace_back(m.time, name);

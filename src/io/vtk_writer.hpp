@@ -2,7 +2,9 @@
 // Snapshots of the model for ParaView: one VTK XML unstructured grid (.vtu) per snapshot, and a
 // .pvd collection that lists them with their times. Zones are triangles with their stresses,
 // rigid blocks are polygons with their velocity and rotation, contacts are vertices at their
-// points with their forces; gridpoints carry displacement and velocity.
+// points with their forces; gridpoints carry displacement and velocity. With [fluid], the
+// domains (at their centres, with pressure and area) and the flow knots (at their points, with
+// flow and aperture) are vertices too.
 #include <string>
 #include <vector>
 

@@ -215,3 +215,24 @@ def test_fluid_histories_need_fluid_and_a_point(tmp_path):
     assert done.returncode == 3 and "domain.pressure is a fluid-flow quantity" in done.stderr, done.stderr
     done, _ = run(tmp_path, BASE + "[[history]]\nname = \"p\"\nquantity = \"knot.flow\"\n", name="nopoint")
     assert done.returncode == 3 and "point" in done.stderr, done.stderr
+
+
+@pytest.mark.requirements("REQ-FLOW-010")
+def test_vtk_snapshots_hold_the_domains_and_knots_of_results_json(tmp_path):
+    import xml.etree.ElementTree as ET
+    done, results = run(tmp_path, BASE + "\n[output]\nvtk_every = 400\n")
+    assert done.returncode == 0, done.stderr
+    vtk = tmp_path / "scene-out" / "vtk"
+    last = sorted(vtk.glob("snapshot_*.vtu"))[-1]
+    piece = ET.parse(last).getroot().find("UnstructuredGrid/Piece")
+    arrays = {a.get("Name"): [float(x) for x in (a.text or "").split()] for a in piece.iter("DataArray")}
+    kind_name = next(name for name in arrays if name.startswith("kind"))
+    kind = arrays[kind_name]
+    assert "3 fluid domain" in kind_name and "4 flow knot" in kind_name
+    assert len(arrays["pressure"]) == len(kind) == int(piece.get("NumberOfCells"))
+    domains = [i for i, k in enumerate(kind) if k == 3]
+    knots = [i for i, k in enumerate(kind) if k == 4]
+    assert [arrays["pressure"][i] for i in domains] == results["domains"]["pressure"]
+    assert [arrays["domain_area"][i] for i in domains] == results["domains"]["area"]
+    assert [arrays["flow"][i] for i in knots] == results["knots"]["flow"]
+    assert [arrays["aperture"][i] for i in knots] == results["knots"]["aperture"]
