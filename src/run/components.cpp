@@ -122,7 +122,11 @@ Component deformableBlocks(RunContext& run) {
 // Fluid in the joints (1.2, Fig. 1.2-5): the domain pressures load the blocks with the step's
 // forces; after the motion the network follows the contacts and the fluid flows over the step.
 Component fractureFlow(RunContext& run) {
-  Component c{"fracture-flow", {}, [&run] { return fluidMechanicalTimeStep(run.model, run.settings.frac); }};
+  // The steady scheme stores no fluid: the pressures follow the apertures, not the areas, and the
+  // fluid is no spring on the blocks.
+  Component c{"fracture-flow", {}, {}};
+  if (run.model.flow.fluid.scheme != FlowScheme::Steady)
+    c.stepLimit = [&run] { return fluidMechanicalTimeStep(run.model, run.settings.frac); };
   c.stages.push_back({"fluid-pressures", [&run] { applyDomainPressures(run.model); }});
   c.stages.push_back({"fluid-flow", [&run] { stepFlow(run.model, run.dt); }, StepPart::Motion});
   return c;
