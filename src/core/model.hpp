@@ -52,11 +52,12 @@ struct JointMaterial {
   double initialFriction = 0.0;  // phi_eff at the start, rad
   double roughness = 0.0;        // R, m
   // Fracture flow (1.4-7 to 1.4-9): the hydraulic aperture at zero normal stress, its bounds,
-  // and the permeability of the point-contact law (m^2/(Pa s) per unit thickness).
-  double aperture = 0.0;
-  double residualAperture = 0.0;
+  // and the permeability of the point-contact law (m^2/(Pa s) per unit thickness). NaN: not
+  // given (the builder requires them with [fluid] and refuses them without).
+  double aperture = NAN;
+  double residualAperture = NAN;
   double maxAperture = INFINITY;
-  double pointPermeability = 0.0;
+  double pointPermeability = NAN;
 };
 
 // Degrees of freedom of a rigid block or gridpoint that are driven (velocity prescribed, zero when

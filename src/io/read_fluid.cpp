@@ -5,18 +5,32 @@
 
 namespace vdec {
 
+namespace {
+
+// Hydraulic apertures are micrometres to millimetres; a metre is no joint's, and a^3 of a larger
+// one would overflow the cubic law.
+double aperture(TableReader& r, const char* key, bool zeroAllowed) {
+  const double a = zeroAllowed ? r.nonNegative(key, 0.0) : r.positive(key);
+  if (a > 1.0) r.fail(key, "must be at most 1 m (a hydraulic aperture, m), got " + shown(a));
+  return a;
+}
+
+}  // namespace
+
 void readJointFlowKeys(TableReader& r, JointMaterial& j) {
   // Checked against the [fluid] table by the builder: without it these keys mean nothing.
-  if (r.has("aperture")) j.aperture = r.nonNegative("aperture", 0.0);
+  if (r.has("aperture")) j.aperture = aperture(r, "aperture", true);
   if (r.has("residual_aperture")) {
-    j.residualAperture = r.positive("residual_aperture");
+    j.residualAperture = aperture(r, "residual_aperture", false);
     if (r.has("aperture") && j.residualAperture > j.aperture)
       r.fail("residual_aperture", "must not exceed aperture (" + shown(j.aperture) + " m), the aperture at zero normal stress");
   }
   if (r.has("max_aperture")) {
-    j.maxAperture = r.positive("max_aperture");
-    if (j.maxAperture < std::max(j.aperture, j.residualAperture))
-      r.fail("max_aperture", "must be at least aperture and residual_aperture (" + shown(std::max(j.aperture, j.residualAperture)) + " m)");
+    j.maxAperture = aperture(r, "max_aperture", false);
+    const double least = std::max(std::isnan(j.aperture) ? 0.0 : j.aperture,
+                                  std::isnan(j.residualAperture) ? 0.0 : j.residualAperture);
+    if (j.maxAperture < least)
+      r.fail("max_aperture", "must be at least aperture and residual_aperture (" + shown(least) + " m)");
   }
   if (r.has("point_permeability")) {
     if (j.law != JointLaw::PointContact)

@@ -22,18 +22,20 @@ void addFluid(Model& m, const SceneDefinition& s) {
   for (const JointMaterialDefinition& d : s.jointMaterials) {
     const JointMaterial& j = d.material;
     if (!s.fluid) {
-      for (const char* key : {"aperture", "residual_aperture", "max_aperture", "point_permeability"})
-        if (d.origin.keys.count(key)) d.origin.fail(key, "is a fluid-flow property, and the scene has no [fluid] table");
+      const char* given = !std::isnan(j.aperture)            ? "aperture"
+                          : !std::isnan(j.residualAperture)  ? "residual_aperture"
+                          : std::isfinite(j.maxAperture)     ? "max_aperture"
+                          : !std::isnan(j.pointPermeability) ? "point_permeability"
+                                                             : nullptr;
+      if (given) d.origin.fail(given, "is a fluid-flow property, and the scene has no [fluid] table");
       continue;
     }
-    if (j.law == JointLaw::PointContact) {
-      if (!d.origin.keys.count("point_permeability"))
-        d.origin.fail("point_permeability", "is required with [fluid]: the point-contact law passes fluid at kc dp (1.4-7)");
-      continue;
-    }
-    if (!d.origin.keys.count("aperture"))
+    if (j.law == JointLaw::PointContact && std::isnan(j.pointPermeability))
+      d.origin.fail("point_permeability", "is required with [fluid]: the point-contact law passes fluid at kc dp (1.4-7)");
+    // Every law's apertures give the domains their volume; the cubic law's, their conductance.
+    if (std::isnan(j.aperture))
       d.origin.fail("aperture", "is required with [fluid]: the hydraulic aperture at zero normal stress, a0 of 1.4-9 (m)");
-    if (!d.origin.keys.count("residual_aperture"))
+    if (std::isnan(j.residualAperture))
       d.origin.fail("residual_aperture", "is required with [fluid]: the least hydraulic aperture, however closed the "
                                          "joint (m, > 0 and at most aperture)");
   }

@@ -33,10 +33,6 @@ _UNCHECKED = "issue 10, unchecked input: a non-finite number in a point or an ar
 _RANGE_BOUND = ("issue 10, unchecked input: an infinite bound of a [[boundary]] range (x, y, r) is taken "
                 "as no bound, a NaN one as selecting nothing, instead of an input error")
 KNOWN_FAILURES = [
-    (r"FL-JACKING:joint_material\[1\]\.aperture:huge",
-     "fracture flow: a joint aperture of 1e308 is accepted; the areas of the domains it bounds overflow, and "
-     "where such a domain is held by a pressure boundary results.json holds null areas, contents and fluid "
-     "balance with exit code 0 (a free one stops with exit 5 blaming step_fraction) instead of an input error"),
 ]
 
 

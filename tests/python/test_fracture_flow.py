@@ -35,6 +35,7 @@ BAD = [
     ("residual above aperture", BASE.replace("residual_aperture = 1e-5", "residual_aperture = 1e-3"),
      "residual_aperture", "must not exceed aperture"),
     ("residual zero", BASE.replace("residual_aperture = 1e-5", "residual_aperture = 0.0"), "residual_aperture", "> 0"),
+    ("aperture above a metre", BASE.replace("aperture = 1e-4", "aperture = 1e308"), "aperture", "at most 1 m"),
     ("max below aperture", BASE.replace("residual_aperture = 1e-5", "residual_aperture = 1e-5\nmax_aperture = 1e-5"),
      "max_aperture", "must be at least"),
     ("no bulk modulus", BASE.replace("bulk_modulus = 2e6\n", ""), "bulk_modulus", "is required"),
