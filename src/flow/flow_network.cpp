@@ -200,7 +200,7 @@ void buildFlowNetwork(Model& m, bool carry) {
   // Domains: the loops of side -> next -> the knot's other side.
   struct Loop {
     std::int64_t key;
-    std::vector<int> sides;
+    int first = 0, count = 0;  // its sides: loopSides[first .. first + count)
     double signedArea = 0.0, perimeter = 0.0, hydraulic = 0.0;
     Vec2 centre;
     bool outside = false;
@@ -208,6 +208,7 @@ void buildFlowNetwork(Model& m, bool carry) {
   std::vector<FlowSide> sides;
   std::vector<SidePlace> sidePlace;
   std::vector<Loop> loops;
+  std::vector<int> loopSides;
   std::vector<int> loopOf;
   auto walk = [&](int s, auto&& piece) { walkSide(vx, sides, s, piece); };
   // A loop's area (signed: clockwise round a void), perimeter, joint volume at the hydraulic
@@ -215,7 +216,8 @@ void buildFlowNetwork(Model& m, bool carry) {
   auto measure = [&](Loop& loop) {
     loop.signedArea = loop.perimeter = loop.hydraulic = 0.0;
     Vec2 weighted;
-    for (const int s : loop.sides) {
+    for (int i = loop.first; i < loop.first + loop.count; ++i) {
+      const int s = loopSides[i];
       double length = 0.0;
       walk(s, [&](int e, double t0, double t1) {
         const VertexGeometry& g = vx.geometry[e];
@@ -233,7 +235,7 @@ void buildFlowNetwork(Model& m, bool carry) {
       const double a0 = knots[sides[s].knot].aperture, a1 = knots[sides[n].knot].aperture;
       loop.hydraulic += 0.25 * length * (a0 + a1);
     }
-    loop.centre = loop.perimeter > 0.0 ? (1.0 / loop.perimeter) * weighted : sidePoint(sides[loop.sides.front()]);
+    loop.centre = loop.perimeter > 0.0 ? (1.0 / loop.perimeter) * weighted : sidePoint(sides[loopSides[loop.first]]);
   };
   // A knot with the same void on both sides (the corners meeting diagonally at a crossing of
   // joints, or blocks touching corner to corner with the outside all round) parts nothing: it
@@ -242,6 +244,7 @@ void buildFlowNetwork(Model& m, bool carry) {
     sides.assign(2 * knots.size(), FlowSide{});
     sidePlace.assign(sides.size(), SidePlace{});
     loops.clear();
+    loopSides.clear();
     loopOf.assign(sides.size(), -1);
     for (std::size_t k = 0; k < knots.size(); ++k) {
       const ContactPlace& p = places[knotContact[k]];
@@ -267,12 +270,15 @@ void buildFlowNetwork(Model& m, bool carry) {
       sides[s].ring = sidePlace[s].ring;
       sides[s].order = sidePlace[s].order;
     }
-    std::vector<int> byBlock(sides.size());
-    std::iota(byBlock.begin(), byBlock.end(), 0);
-    std::sort(byBlock.begin(), byBlock.end(), [&](int a, int b) {
-      if (sides[a].block != sides[b].block) return sides[a].block < sides[b].block;
-      return before(sidePlace[a], sidePlace[b]);
-    });
+    // By block (a counting sort), then along each block's boundary (a few sides each).
+    std::vector<int> blockStart(nBlocks + 1, 0);
+    for (const FlowSide& side : sides) ++blockStart[side.block + 1];
+    for (int b = 0; b < nBlocks; ++b) blockStart[b + 1] += blockStart[b];
+    std::vector<int> byBlock(sides.size()), fill(blockStart.begin(), blockStart.end() - 1);
+    for (std::size_t i = 0; i < sides.size(); ++i) byBlock[fill[sides[i].block]++] = static_cast<int>(i);
+    for (int b = 0; b < nBlocks; ++b)
+      std::sort(byBlock.begin() + blockStart[b], byBlock.begin() + blockStart[b + 1],
+                [&](int x, int y) { return before(sidePlace[x], sidePlace[y]); });
     for (std::size_t start = 0; start < byBlock.size();) {
       std::size_t end = start;
       const FlowSide& s0 = sides[byBlock[start]];
@@ -285,11 +291,13 @@ void buildFlowNetwork(Model& m, bool carry) {
     for (std::size_t s0 = 0; s0 < sides.size(); ++s0) {
       if (loopOf[s0] >= 0) continue;
       Loop loop;
+      loop.first = static_cast<int>(loopSides.size());
       loop.key = INT64_MAX;
       double smallestBlock = INFINITY;
       for (int s = static_cast<int>(s0); loopOf[s] < 0; s = other(sides[s].next)) {
         loopOf[s] = static_cast<int>(loops.size());
-        loop.sides.push_back(s);
+        loopSides.push_back(s);
+        ++loop.count;
         loop.key = std::min(loop.key, sidePlace[s].key);
         smallestBlock = std::min(smallestBlock, std::abs(blockArea[sides[s].block]));
       }
@@ -376,24 +384,34 @@ void buildFlowNetwork(Model& m, bool carry) {
   if (!carry) {
     for (FlowDomain& d : domains) fill(d, initialPressure(m, d.centre));
   } else {
-    std::vector<std::pair<std::int64_t, int>> oldSide;
-    for (std::size_t s = 0; s < fs.sides.size(); ++s)
-      if (fs.sides[s].domain >= 0) {
-        const FlowKnot& k = fs.knots[fs.sides[s].knot];
-        oldSide.emplace_back(2 * k.key + (fs.sides[s].block == k.blockA ? 0 : 1), fs.sides[s].domain);
-      }
-    std::sort(oldSide.begin(), oldSide.end());
+    auto oldKey = [&fs](std::size_t s) {
+      const FlowKnot& k = fs.knots[fs.sides[s].knot];
+      return 2 * k.key + (fs.sides[s].block == k.blockA ? 0 : 1);
+    };
     std::vector<std::pair<int, int>> links;  // (old domain, new domain)
-    for (std::size_t s = 0; s < sides.size(); ++s) {
-      if (sides[s].domain < 0) continue;
-      const auto found = std::lower_bound(oldSide.begin(), oldSide.end(), std::pair{sidePlace[s].key, -1});
-      if (found != oldSide.end() && found->first == sidePlace[s].key) links.emplace_back(found->second, sides[s].domain);
+    // Most steps the network is the step before's, side for side: each domain is its own successor.
+    bool same = fs.sides.size() == sides.size() && fs.domains.size() == domains.size();
+    for (std::size_t s = 0; same && s < sides.size(); ++s)
+      same = fs.sides[s].domain == sides[s].domain && oldKey(s) == sidePlace[s].key;
+    if (same) {
+      for (std::size_t d = 0; d < domains.size(); ++d) links.emplace_back(static_cast<int>(d), static_cast<int>(d));
+    } else {
+      std::vector<std::pair<std::int64_t, int>> oldSide;
+      for (std::size_t s = 0; s < fs.sides.size(); ++s)
+        if (fs.sides[s].domain >= 0) oldSide.emplace_back(oldKey(s), fs.sides[s].domain);
+      std::sort(oldSide.begin(), oldSide.end());
+      for (std::size_t s = 0; s < sides.size(); ++s) {
+        if (sides[s].domain < 0) continue;
+        const auto found = std::lower_bound(oldSide.begin(), oldSide.end(), std::pair{sidePlace[s].key, -1});
+        if (found != oldSide.end() && found->first == sidePlace[s].key) links.emplace_back(found->second, sides[s].domain);
+      }
+      std::sort(links.begin(), links.end());
+      links.erase(std::unique(links.begin(), links.end()), links.end());
+      bool identity = links.size() == domains.size() && links.size() == fs.domains.size();
+      for (std::size_t i = 0; identity && i < links.size(); ++i)
+        identity = links[i].first == static_cast<int>(i) && links[i].second == static_cast<int>(i);
+      if (!identity) ++fs.totals.networkChanges;
     }
-    std::sort(links.begin(), links.end());
-    links.erase(std::unique(links.begin(), links.end()), links.end());
-    bool same = links.size() == domains.size() && links.size() == fs.domains.size();
-    for (std::size_t i = 0; same && i < links.size(); ++i) same = links[i].first == static_cast<int>(i) && links[i].second == static_cast<int>(i);
-    if (!same) ++fs.totals.networkChanges;
     std::vector<double> targetArea(fs.domains.size(), 0.0);
     std::vector<char> reached(domains.size(), 0);
     for (const auto& [o, d] : links) targetArea[o] += domains[d].area;
