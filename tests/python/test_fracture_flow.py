@@ -237,3 +237,60 @@ def test_vtk_snapshots_hold_the_domains_and_knots_of_results_json(tmp_path):
     assert [arrays["domain_area"][i] for i in domains] == results["domains"]["area"]
     assert [arrays["flow"][i] for i in knots] == results["knots"]["flow"]
     assert [arrays["aperture"][i] for i in knots] == results["knots"]["aperture"]
+
+
+SEALED = """
+[model]
+rounding = 0.01
+[stop]
+time = 0.05
+[fluid]
+bulk_modulus = 2e9
+viscosity = 1e-3
+[[joint_material]]
+name = "j"
+kn = 1e10
+ks = 1e10
+friction = 30.0
+aperture = 1e-4
+residual_aperture = 1e-5
+[[block_material]]
+name = "rock"
+density = 2500.0
+[[block]]
+name = "lower"
+material = "rock"
+vertices = [[0.0, -1.0], [2.0, -1.0], [2.0, 0.0], [0.0, 0.0]]
+fix = ["x", "y", "rotation"]
+[[block]]
+name = "upper"
+material = "rock"
+vertices = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]
+fix = ["x", "y", "rotation"]
+[[flow_boundary]]
+name = "well"
+box = [0.5, -0.1, 1.5, 0.1]
+inflow = 1e-7
+"""
+
+
+@pytest.mark.requirements("REQ-FLOW-006", "REQ-FLOW-003")
+def test_an_inflow_into_a_sealed_joint_raises_its_pressure_as_kw_q_t_over_its_volume(tmp_path):
+    # One domain (the joint between two held blocks, L a0 = 2e-4 m^2), both mouths impermeable:
+    # content A + Q t, pressure K_w Q t / A, exactly linear in time.
+    done, results = run(tmp_path, SEALED)
+    assert done.returncode == 0, done.stderr
+    t = results["run"]["time"]
+    (area,), (pressure,) = results["domains"]["area"], results["domains"]["pressure"]
+    assert area == pytest.approx(2.0 * 1e-4, rel=1e-12, abs=0)
+    # Round-off: the content A (1 + p / K_w) carries p to K_w eps a step, over the run's steps.
+    steps = results["run"]["cycles"]
+    assert pressure == pytest.approx(2e9 * 1e-7 * t / area, rel=0, abs=2e9 * 2.2e-16 * steps)
+    balance = results["fluid"]["balance"]
+    assert balance["inflow"] == pytest.approx(1e-7 * t, rel=1e-12, abs=0) and balance["outflow"] == 0.0
+    # A history scales the rate: a linear ramp f = t / (1 s) gives content A + Q t^2 / 2.
+    ramp = SEALED.replace("inflow = 1e-7\n", "inflow = 1e-7\nhistory = { kind = \"linear\", start = 0.0, rate = 1.0 }\n")
+    done, results = run(tmp_path, ramp, name="ramp")
+    assert done.returncode == 0, done.stderr
+    t = results["run"]["time"]
+    assert results["fluid"]["balance"]["inflow"] == pytest.approx(1e-7 * t * t / 2, rel=2.0 * results["run"]["dt"] / t, abs=0)
