@@ -48,17 +48,28 @@ double pieceLength(Vec2 a, Vec2 b) { return norm(b - a); }
 
 }  // namespace
 
+namespace {
+
+// Depth below the level line through (0, y_wt), the line normal to gravity: rho_w g . (x - x_wt)
+// over rho_w |g|. With gravity along -y it is y_wt - y.
+double depthBelow(const Model& m, double waterTable, Vec2 at) {
+  const double g = norm(m.gravity);
+  return g > 0.0 ? dot(m.gravity, at - Vec2{0.0, waterTable}) / g : 0.0;
+}
+
+}  // namespace
+
 double initialPressure(const Model& m, Vec2 at) {
   const FluidProperties& f = m.flow.fluid;
   if (std::isnan(f.waterTable)) return f.initialPressure;
-  const double g = norm(m.gravity);
-  const double depth = f.waterTable - at.y;
-  return depth > 0.0 ? f.density * g * depth : f.initialPressure;
+  const double depth = depthBelow(m, f.waterTable, at);
+  return depth > 0.0 ? f.density * norm(m.gravity) * depth : f.initialPressure;
 }
 
 double boundaryValue(const Model& m, const FlowBoundary& b, Vec2 at) {
-  const double value = std::isnan(b.waterTable) ? b.value
-                                                : m.flow.fluid.density * norm(m.gravity) * std::max(0.0, b.waterTable - at.y);
+  const double value = std::isnan(b.waterTable)
+                           ? b.value
+                           : m.flow.fluid.density * norm(m.gravity) * std::max(0.0, depthBelow(m, b.waterTable, at));
   return b.history < 0 ? value : value * m.timeFunctions[b.history](m.time - b.timeOrigin);
 }
 

@@ -126,6 +126,35 @@ void solveFlow(Model& m, double h, bool steady) {
   std::vector<double> piezometric(n);
   for (int d = 0; d < n; ++d)
     piezometric[d] = unknown[d] >= 0 ? solved[unknown[d]] : fs.domains[d].pressure + offset(fs.domains[d].centre);
+  // Steady: a group of domains that no held pressure reaches comes to rest at one piezometric
+  // pressure, the one at which it holds the fluid it has (hydrostatic under gravity).
+  std::vector<char> settled(n, 0);
+  if (steady) {
+    std::vector<std::vector<int>> links(n);
+    for (std::size_t k = 0; k < fs.knots.size(); ++k) {
+      const FlowKnot& knot = fs.knots[k];
+      if (knot.domain[0] >= 0 && knot.domain[1] >= 0 && conductance[k] > 0.0) {
+        links[knot.domain[0]].push_back(knot.domain[1]);
+        links[knot.domain[1]].push_back(knot.domain[0]);
+      }
+    }
+    for (int start = 0; start < n; ++start) {
+      if (reached[start] || settled[start] || fs.domains[start].fixed) continue;
+      std::vector<int> group{start};
+      settled[start] = 1;
+      for (std::size_t i = 0; i < group.size(); ++i)
+        for (const int e : links[group[i]])
+          if (!settled[e]) settled[e] = 1, group.push_back(e);
+      double content = 0.0, area = 0.0, weighted = 0.0;
+      for (const int d : group) {
+        content += fs.domains[d].content;
+        area += fs.domains[d].area;
+        weighted += fs.domains[d].area * offset(fs.domains[d].centre);
+      }
+      const double level = (kw * (content - area) + weighted) / area;
+      for (const int d : group) piezometric[d] = level;
+    }
+  }
   for (std::size_t k = 0; k < fs.knots.size(); ++k) {
     FlowKnot& knot = fs.knots[k];
     int u[2];
@@ -158,7 +187,7 @@ void solveFlow(Model& m, double h, bool steady) {
       else fs.totals.outflow += dom.content - content;
       dom.content = content;
       dom.pressure = held;
-    } else if (steady && unknown[d] >= 0) {
+    } else if (steady && (unknown[d] >= 0 || settled[d])) {
       // No storage in a steady flow: the domain holds what its steady pressure compresses into
       // it, the difference from what the flow left there given or taken by the solve.
       dom.pressure = piezometric[d] - offset(dom.centre);

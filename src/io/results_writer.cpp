@@ -113,7 +113,7 @@ void writeFlow(nlohmann::json& j, const Model& m) {
   j["domains"] = {{"x0", dx}, {"y0", dy}, {"block", dBlock}, {"pressure", pressure}, {"area", area},
                   {"content", content}, {"fixed", fixed}, {"at_minimum_area", atFloor}};
   std::vector<double> kx, ky, aperture, length, flow, conductance;
-  std::vector<int> kBlock, kOther, d0, d1;
+  std::vector<int> kBlock, kOther, d0, d1, held;
   std::vector<std::string> boundary;
   for (const FlowKnot& k : fs.knots) {
     kx.push_back(k.point.x);
@@ -127,10 +127,11 @@ void writeFlow(nlohmann::json& j, const Model& m) {
     d0.push_back(k.domain[0]);
     d1.push_back(k.domain[1]);
     boundary.push_back(k.boundary >= 0 ? fs.boundaries[k.boundary].name : "");
+    held.push_back(k.boundary >= 0);
   }
   j["knots"] = {{"x0", kx}, {"y0", ky}, {"block", kBlock}, {"block_b", kOther}, {"aperture", aperture},
                 {"length", length}, {"flow", flow}, {"conductance", conductance}, {"domain_0", d0}, {"domain_1", d1},
-                {"boundary", boundary}};
+                {"boundary", boundary}, {"held", held}};
   const FlowTotals& t = fs.totals;
   j["fluid"] = {{"flowing", fs.on},
                 {"domains", fs.domains.size()},

@@ -6,10 +6,10 @@
 
 namespace vdec {
 
-FlowBoundary flowBoundary(Model& m, const FlowBoundaryDefinition& d) {
+FlowBoundary flowBoundary(Model& m, const FlowBoundaryDefinition& d, Vec2 gravity) {
   if (!m.flow.present) d.origin.failTable("needs a [fluid] table: the scene has no fluid to hold or feed");
   FlowBoundary b = d.boundary;
-  if (!std::isnan(b.waterTable) && norm(m.gravity) == 0.0)
+  if (!std::isnan(b.waterTable) && norm(gravity) == 0.0)
     d.origin.fail("water_table", "a hydrostatic pressure needs gravity: give [model] gravity, or a pressure");
   if (d.history) {
     m.timeFunctions.push_back(*d.history);
@@ -65,7 +65,7 @@ void addFluid(Model& m, const SceneDefinition& s) {
     f.fluid.minDomainArea = 1e-9 * (count > 0 ? total / count : 1.0);
   }
   for (const FlowBoundaryDefinition& d : s.flowBoundaries) {
-    FlowBoundary b = flowBoundary(m, d);
+    FlowBoundary b = flowBoundary(m, d, m.gravity);
     for (const FlowBoundary& other : f.boundaries)
       if (!b.name.empty() && other.name == b.name) d.origin.fail("name", "flow boundary '" + b.name + "' is defined twice");
     f.boundaries.push_back(b);

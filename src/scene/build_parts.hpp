@@ -31,8 +31,9 @@ Phase buildPhase(const PhaseDefinition& definition, Model& model, std::optional<
 // The fluid and its flow boundaries into the model (after the blocks); each joint material's
 // fluid keys checked against the presence of [fluid].
 void addFluid(Model& model, const SceneDefinition& scene);
-// A flow boundary resolved: its history appended to model.timeFunctions.
-FlowBoundary flowBoundary(Model& model, const FlowBoundaryDefinition& definition);
+// A flow boundary resolved: its history appended to model.timeFunctions; a water table needs
+// `gravity`, the gravity in force when it comes on.
+FlowBoundary flowBoundary(Model& model, const FlowBoundaryDefinition& definition, Vec2 gravity);
 
 // History subjects by position (initial configuration): the block's gridpoint nearest `point`,
 // and the zone of the block that holds `point` (-1 when none does).

@@ -102,7 +102,7 @@ Phase buildPhase(const PhaseDefinition& d, Model& m, std::optional<Model>& geome
   if (d.flow && !m.flow.present) d.origin.fail("flow", "needs a [fluid] table: the scene has no fluid");
   c.flow = d.flow;
   for (const FlowBoundaryDefinition& b : d.flowBoundaries) {
-    c.flowBoundaries.push_back(flowBoundary(m, b));
+    c.flowBoundaries.push_back(flowBoundary(m, b, d.gravity.value_or(m.gravity)));
     if (geometry) geometry->timeFunctions = m.timeFunctions;
     if (!c.flowBoundaries.back().name.empty() && !active.insert(c.flowBoundaries.back().name).second)
       b.origin.fail("name", "boundary '" + c.flowBoundaries.back().name + "' is active when the phase starts; free it first");

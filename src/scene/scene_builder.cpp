@@ -506,9 +506,10 @@ Scene buildScene(SceneDefinition s) {
   std::set<std::string> active;
   for (const BoundaryCondition& b : m.boundaryConditions)
     if (!b.name.empty()) active.insert(b.name);
-  for (const FlowBoundary& b : m.flow.boundaries)
-    if (!b.name.empty() && !active.insert(b.name).second)
-      throw SceneError("flow boundary '" + b.name + "' has the name of a [[boundary]]: give it another");
+  for (const FlowBoundaryDefinition& d : s.flowBoundaries)
+    if (!d.boundary.name.empty() && !active.insert(d.boundary.name).second)
+      d.origin.fail("name", "flow boundary '" + d.boundary.name + "' has the name of a [[boundary]]: give it another "
+                            "(a phase's free takes either kind by name)");
   std::optional<Model> excavated;  // a copy of the model, excavated as the phases will, once one does
   std::vector<char> plastic;  // block materials Mohr-Coulomb by the phase at hand
   for (const BlockMaterial& mat : m.blockMaterials) plastic.push_back(mat.plastic);

@@ -294,3 +294,44 @@ def test_an_inflow_into_a_sealed_joint_raises_its_pressure_as_kw_q_t_over_its_vo
     assert done.returncode == 0, done.stderr
     t = results["run"]["time"]
     assert results["fluid"]["balance"]["inflow"] == pytest.approx(1e-7 * t * t / 2, rel=2.0 * results["run"]["dt"] / t, abs=0)
+
+
+FOUR_HELD_BLOCKS = """
+[model]
+rounding = 0.01
+gravity = [0.0, -9.81]
+[stop]
+cycles = 200
+[[block_material]]
+name = "rock"
+density = 2650.0
+[[joint_material]]
+name = "joint"
+kn = 1e10
+ks = 1e10
+friction = 30.0
+aperture = 1e-4
+residual_aperture = 1e-5
+[fluid]
+bulk_modulus = 2e9
+viscosity = 1e-3
+scheme = "steady"
+""" + "".join(
+    f"[[block]]\nname = \"{n}\"\nmaterial = \"rock\"\nvertices = [[{x}, {y}], [{x + 1}, {y}], [{x + 1}, {y + 1}], "
+    f"[{x}, {y + 1}]]\nfix = [\"x\", \"y\", \"rotation\"]\n"
+    for n, x, y in (("a", 0.0, -1.0), ("b", 1.0, -1.0), ("c", 0.0, 0.0), ("d", 1.0, 0.0)))
+
+
+@pytest.mark.requirements("REQ-FLOW-003", "REQ-FLOW-005")
+def test_the_steady_scheme_brings_a_network_no_held_pressure_reaches_to_rest_holding_its_fluid(tmp_path):
+    # Four held blocks, no flow boundary: the joints start at zero pressure and, under gravity,
+    # settle at one piezometric pressure p + rho_w g y holding the fluid they had (no blow-up).
+    done, results = run(tmp_path, FOUR_HELD_BLOCKS)
+    assert done.returncode == 0, done.stderr
+    d = results["domains"]
+    head = [p + 1000.0 * 9.81 * y for p, y in zip(d["pressure"], d["y0"])]
+    assert max(head) - min(head) <= 1e-9 * max(abs(p) for p in d["pressure"])
+    assert max(abs(p) for p in d["pressure"]) == pytest.approx(1000.0 * 9.81 * 0.505, rel=0.02, abs=0)
+    balance = results["fluid"]["balance"]
+    assert abs(balance["imbalance"]) <= 1e-15 * balance["initial_content"]
+    assert all(q == 0.0 for q in results["knots"]["flow"])
