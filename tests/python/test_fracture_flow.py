@@ -114,7 +114,7 @@ def phased():
     return text + PHASES
 
 
-@pytest.mark.requirements("REQ-FLOW-006")
+@pytest.mark.requirements("REQ-FLOW-006", "REQ-FLOW-010")
 def test_a_phase_switches_the_flow_on_and_adds_and_frees_flow_boundaries(tmp_path):
     done, results = run(tmp_path, phased())
     assert done.returncode == 0, done.stderr
@@ -144,7 +144,7 @@ def test_a_run_restarted_after_the_flow_came_on_is_the_run_that_did_not_stop(tmp
         assert again[key] == whole[key], key
 
 
-@pytest.mark.requirements("REQ-FLOW-001", "REQ-RUN-007")
+@pytest.mark.requirements("REQ-FLOW-001")
 def test_fluid_results_do_not_depend_on_the_thread_count(tmp_path):
     one, a = run(tmp_path, BASE, "--threads", "1", name="one")
     two, b = run(tmp_path, BASE, "--threads", "2", name="two")

@@ -52,7 +52,7 @@ std::string rigidBlock(const std::string& name, double x0, double y0, double x1,
 }  // namespace
 
 TEST(FlowNetwork, ATwoBlockJointIsOneDomainBetweenTwoMouthsHoldingItsHydraulicVolume) {
-  VDEC_REQUIREMENTS("REQ-FLOW-001");
+  VDEC_REQUIREMENTS("REQ-FLOW-001, REQ-FLOW-002");
   Scene scene = sceneFromText(fluidScene(rigidBlock("lower", 0, -1, 2, 0) + rigidBlock("upper", 0, 0, 2, 1)), "two");
   Cycle cycle(scene.model, scene.settings, {});
   const FlowState& f = scene.model.flow;
