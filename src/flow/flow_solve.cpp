@@ -26,6 +26,15 @@ void solveFlow(Model& m, double h, bool steady) {
 
   // Steady: only the domains from which fluid can reach a held pressure have a steady pressure;
   // the others keep theirs (no flow reaches or leaves them).
+  // The domains each domain passes fluid to directly.
+  std::vector<std::vector<int>> links(n);
+  for (std::size_t k = 0; k < fs.knots.size(); ++k) {
+    const FlowKnot& knot = fs.knots[k];
+    if (knot.domain[0] >= 0 && knot.domain[1] >= 0 && conductance[k] > 0.0) {
+      links[knot.domain[0]].push_back(knot.domain[1]);
+      links[knot.domain[1]].push_back(knot.domain[0]);
+    }
+  }
   std::vector<char> reached(n, steady ? 0 : 1);
   if (steady) {
     std::vector<int> stack;
@@ -35,14 +44,6 @@ void solveFlow(Model& m, double h, bool steady) {
       if (heldMouth(k) && conductance[&k - fs.knots.data()] > 0.0)
         for (const int d : k.domain)
           if (d >= 0 && !reached[d]) reached[d] = 1, stack.push_back(d);
-    std::vector<std::vector<int>> links(n);
-    for (std::size_t k = 0; k < fs.knots.size(); ++k) {
-      const FlowKnot& knot = fs.knots[k];
-      if (knot.domain[0] >= 0 && knot.domain[1] >= 0 && conductance[k] > 0.0) {
-        links[knot.domain[0]].push_back(knot.domain[1]);
-        links[knot.domain[1]].push_back(knot.domain[0]);
-      }
-    }
     while (!stack.empty()) {
       const int d = stack.back();
       stack.pop_back();
@@ -130,14 +131,6 @@ void solveFlow(Model& m, double h, bool steady) {
   // pressure, the one at which it holds the fluid it has (hydrostatic under gravity).
   std::vector<char> settled(n, 0);
   if (steady) {
-    std::vector<std::vector<int>> links(n);
-    for (std::size_t k = 0; k < fs.knots.size(); ++k) {
-      const FlowKnot& knot = fs.knots[k];
-      if (knot.domain[0] >= 0 && knot.domain[1] >= 0 && conductance[k] > 0.0) {
-        links[knot.domain[0]].push_back(knot.domain[1]);
-        links[knot.domain[1]].push_back(knot.domain[0]);
-      }
-    }
     for (int start = 0; start < n; ++start) {
       if (reached[start] || settled[start] || fs.domains[start].fixed) continue;
       std::vector<int> group{start};
@@ -166,13 +159,7 @@ void solveFlow(Model& m, double h, bool steady) {
     const double p0 = knot.domain[0] >= 0 ? piezometric[knot.domain[0]] : known[0];
     const double p1 = knot.domain[1] >= 0 ? piezometric[knot.domain[1]] : known[1];
     knot.flow = conductance[k] * (p0 - p1);
-    const double volume = knot.flow * h;
-    if (knot.domain[0] >= 0) fs.domains[knot.domain[0]].content -= volume;
-    else if (volume > 0.0) fs.totals.inflow += volume;
-    else fs.totals.outflow -= volume;
-    if (knot.domain[1] >= 0) fs.domains[knot.domain[1]].content += volume;
-    else if (volume > 0.0) fs.totals.outflow += volume;
-    else fs.totals.inflow -= volume;
+    passThroughKnot(fs, knot, knot.flow * h);
   }
   for (int d = 0; d < n; ++d) {
     FlowDomain& dom = fs.domains[d];

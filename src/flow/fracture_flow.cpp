@@ -48,6 +48,16 @@ void holdFixedDomains(Model& m) {
 
 }  // namespace
 
+void passThroughKnot(FlowState& fs, const FlowKnot& k, double volume) {
+  // A side that is the outside of the model is a held mouth: what passes it enters or leaves.
+  if (k.domain[0] >= 0) fs.domains[k.domain[0]].content -= volume;
+  else if (volume > 0.0) fs.totals.inflow += volume;
+  else fs.totals.outflow -= volume;
+  if (k.domain[1] >= 0) fs.domains[k.domain[1]].content += volume;
+  else if (volume > 0.0) fs.totals.outflow += volume;
+  else fs.totals.inflow -= volume;
+}
+
 double knotConductance(const Model& m, const FlowKnot& k) {
   const JointMaterial& j = m.jointMaterials[k.joint];
   if (j.law == JointLaw::PointContact) return j.pointPermeability;  // 1.4-7
@@ -213,13 +223,7 @@ void stepFlow(Model& m, double dt) {
       }
       const double q = knotFlow(m, k, side[0] - side[1]);
       k.flow = q;
-      const double volume = q * h;
-      if (k.domain[0] >= 0) fs.domains[k.domain[0]].content -= volume;
-      else if (volume > 0.0) fs.totals.inflow += volume;
-      else fs.totals.outflow -= volume;
-      if (k.domain[1] >= 0) fs.domains[k.domain[1]].content += volume;
-      else if (volume > 0.0) fs.totals.outflow += volume;
-      else fs.totals.inflow -= volume;
+      passThroughKnot(fs, k, q * h);
     }
     for (FlowDomain& d : fs.domains) {
       if (d.fixed) {

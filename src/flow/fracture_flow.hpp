@@ -21,6 +21,9 @@ void stepFlow(Model& model, double dt);
 // piezometric pressure difference dp across it (1.4-7, 1.4-8; Bingham: the linear law or
 // Buckingham's).
 double knotFlow(const Model& model, const FlowKnot& knot, double dp);
+// Moves `volume` (m^2) through the knot from its domain[0] side to its domain[1] side: between
+// the domains' contents, or in or out of the model at a mouth (the fluid account).
+void passThroughKnot(FlowState& flow, const FlowKnot& knot, double volume);
 // Its conductance, flow over pressure difference for a Newtonian fluid (m^2/(Pa s)).
 double knotConductance(const Model& model, const FlowKnot& knot);
 
