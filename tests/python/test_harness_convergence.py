@@ -495,3 +495,22 @@ def test_check_command_lists_the_study():
     assert code == 0 and stdout.strip().splitlines()[-1] == "2 valid, 0 invalid"
     assert ("valid    FX-ORDER-TWO (base; 1 checks; runs: h0.5, h0.25, h0.125, h0.0625; refinement: 4 levels "
             "(2 base), expected order 2 +- 0.1)") in stdout
+
+
+@pytest.mark.requirements("REQ-QA-005")
+def test_a_studied_derived_check_reads_another_run_of_the_problem(tmp_path):
+    """Each level's error may be measured against another run (FL-SCHEMES: an implicit run over
+    the explicit plain run), through a derived extract whose input names that run."""
+    from vdec_verify.runner import RunOutcome, judge_study
+    text = mutated('extract = { kind = "final", history = "normal_force" }\nreference = { function = "rigid_blocks.resting_normal_force", params = { mass = 2500.0, g = 10.0 } }',
+                   'extract = { kind = "derived", function = "ratio", inputs = { numerator = { kind = "run_meta", path = "run.time" }, '
+                   'denominator = { kind = "run_meta", path = "run.time", variant = "" } } }\nreference = { constant = 1.0 }')
+    problem = load_problem(write_problem(tmp_path, text + PLAIN_CHECK))
+    outcome = lambda name, time: RunOutcome(name, [], tmp_path, 0, 0, {"run": {"time": time}}, 1.0)
+    # errors 0.01 h^2 against the plain run's 1.0
+    outcomes = {"": outcome("", 1.0)}
+    outcomes.update({lv.name: outcome(lv.name, 1.0 + 0.01 * lv.h ** 2) for lv in problem.refinement.levels})
+    metrics, study, invalid = judge_study(problem, problem.studied_check, outcomes, "full")
+    assert invalid == [] and study["pass"], study
+    assert metrics[0]["error"] == pytest.approx(0.01 * 0.03125 ** 2, rel=1e-9, abs=0)
+    assert study["observed_order"] == pytest.approx(2.0, abs=1e-6)

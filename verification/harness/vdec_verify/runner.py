@@ -312,7 +312,9 @@ def judge_study(problem, check, outcomes, level):
     levels = problem.refinement.levels_at(level)
     per_level, invalid = [], []
     for lv in levels:
-        metric, unusable = evaluate_check(check, outcomes[lv.name], None, f" (level {lv.name})")
+        # A derived extract of a level may read another run of the problem (variant = "" the
+        # plain run): a level's error measured against a reference run, as FL-SCHEMES does.
+        metric, unusable = evaluate_check(check, outcomes[lv.name], outcomes, f" (level {lv.name})")
         per_level.append(metric)
         invalid += [unusable] if unusable else []
     runs = [outcomes[lv.name] for lv in levels]
