@@ -263,10 +263,10 @@ double fluidMechanicalTimeStep(const Model& m, double frac) {
     if (side.domain < 0) continue;
     const FlowKnot& k0 = fs.knots[side.knot];
     const FlowKnot& k1 = fs.knots[fs.sides[side.next].knot];
-    const double residual = 0.5 * (m.jointMaterials[k0.joint].residualAperture + m.jointMaterials[k1.joint].residualAperture);
+    const double residuals = m.jointMaterials[k0.joint].residualAperture + m.jointMaterials[k1.joint].residualAperture;
     double length = 0.0;
     walkSide(vx, fs.sides, s, [&](int e, double t0, double t1) { length += (t1 - t0) * vx.geometry[e].edgeLength; });
-    stiffest[side.domain] += 0.25 * length * residual;  // the least area: hydraulic, at residual apertures
+    stiffest[side.domain] += 0.25 * length * residuals;  // the least area: hydraulic, at residual apertures
   }
   for (std::size_t d = 0; d < fs.domains.size(); ++d) {
     const FlowDomain& dom = fs.domains[d];

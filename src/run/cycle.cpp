@@ -467,6 +467,8 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
     if (model_.flow.on) {
       startFlow(model_);
     } else {
+      // The fluid the network held leaves the account with it.
+      model_.flow.totals.removed += flowContent(model_);
       model_.flow.knots.clear();
       model_.flow.sides.clear();
       model_.flow.domains.clear();
