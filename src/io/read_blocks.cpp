@@ -1,4 +1,6 @@
 // [[block]], [[region]] and [[excavation]].
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "io/scene_sections.hpp"
@@ -132,6 +134,12 @@ RegionDefinition readRegion(TableReader& r) {
     if (s.gapVariation > s.gap) j.fail("gap_variation", "must not exceed gap");
     if (s.gap > 0 && s.trace <= 0) j.fail("gap", "a gap needs a finite trace length");
     s.origin = j.vec2("origin", {0.0, 0.0});
+    // The lattice of joints is stepped from the origin by at least spacing - spacing_variation; a
+    // step below the origin coordinates' round-off would never move (the cutter would not end).
+    const double reach = std::max(std::abs(s.origin.x), std::abs(s.origin.y));
+    if (reach * 1e-9 > s.spacing - s.spacingVariation)
+      j.fail("origin", "lies " + shown(reach) + " m out, too far for joints " + shown(s.spacing - s.spacingVariation) +
+                           " m apart to be stepped from it: give an origin within 1e9 spacings of the region");
     region.jointSets.push_back(s);
     j.finish();
   }

@@ -33,10 +33,6 @@ _UNCHECKED = "issue 10, unchecked input: a non-finite number in a point or an ar
 _RANGE_BOUND = ("issue 10, unchecked input: an infinite bound of a [[boundary]] range (x, y, r) is taken "
                 "as no bound, a NaN one as selecting nothing, instead of an input error")
 KNOWN_FAILURES = [
-    (r"FL-NETWORK:region\[0\]\.joint_set\[1\]\.origin\[1\]:huge",
-     "region cutting: a joint set whose origin lies 1e308 m from the region does not end (and does not "
-     "answer SIGTERM); the limit on a region's joint lines should refuse it as a scene error (found "
-     "2026-11-24 when FL-NETWORK brought the first region into the problems; each run costs the 60 s limit)"),
 ]
 
 
