@@ -188,6 +188,21 @@ def test_finite_joint_known_values(far_end):
 
 @REQ
 @pytest.mark.parametrize("far_end", ["fixed", "impermeable"])
+def test_finite_joint_start_time_shifts_the_clock(far_end):
+    # A step at start_time = 3 s read at t = 3 s + t1 is the step at 0 read at t1; a read before the
+    # step is refused, as t <= 0 is.
+    t1 = time_of(0.3)
+    args = dict(finite_args(far_end), normal_stiffness=1e10)
+    assert ff.step_pressure_finite(3.0 + t1, x=0.7, start_time=3.0, **args) == pytest.approx(
+        ff.step_pressure_finite(t1, x=0.7, **args), rel=1e-12, abs=0)
+    assert ff.step_inflow_volume_finite(3.0 + t1, start_time=3.0, **args) == pytest.approx(
+        ff.step_inflow_volume_finite(t1, **args), rel=1e-12, abs=0)
+    with pytest.raises(ValueError, match="t = "):
+        ff.step_pressure_finite(2.5, x=0.7, start_time=3.0, **args)
+
+
+@REQ
+@pytest.mark.parametrize("far_end", ["fixed", "impermeable"])
 @pytest.mark.parametrize("kn", [math.inf, 1e10])
 def test_finite_joint_at_short_times_is_the_semi_infinite_joint(far_end, kn):
     # tau = 0.01: the far end's first image is erfc(1 / sqrt(0.01) = 10) ~ 2e-45 away

@@ -13,6 +13,7 @@ def results_with(**histories):
     return {"schema": "vdec.results/1",
             "run": {"cycles": 120, "dt": 1e-3, "nested": {"value": 2.5}, "stop_reason": "time"},
             "energy": {"largest_excess": 0.125},
+            "phases": [{"name": "settle", "start_time": 0.0}, {"name": "flow", "start_time": 0.75}],
             "histories": {name: {"t": list(map(float, t)), "value": list(map(float, v))}
                           for name, (t, v) in histories.items()}}
 
@@ -34,6 +35,7 @@ RAMP = results_with(h=(T, 10.0 * T + 1.0))
     ({"kind": "run_meta", "path": "run.cycles"}, 120.0),
     ({"kind": "run_meta", "path": "run.nested.value"}, 2.5),
     ({"kind": "run_meta", "path": "energy.largest_excess"}, 0.125),
+    ({"kind": "run_meta", "path": "phases.flow.start_time"}, 0.75),
 ])
 def test_scalar_extractors(table, expected):
     assert extract(table, RAMP, 0) == pytest.approx(expected, rel=1e-12, abs=0)
@@ -118,6 +120,7 @@ def test_exit_code_needs_no_results():
     ({"kind": "value_at", "history": "h", "t": 1.5}, RAMP, "outside the sampled times"),
     ({"kind": "run_meta", "path": "energy.nope"}, RAMP, "no field 'energy.nope'"),
     ({"kind": "run_meta", "path": "run.stop_reason"}, RAMP, "not a number"),
+    ({"kind": "run_meta", "path": "phases.nope.time"}, RAMP, "no phase named 'nope'"),
     ({"kind": "fit_t2", "history": "h", "window": [0.0, 0.1]}, RAMP, "at least three samples"),
     ({"kind": "log_decrement", "history": "h"}, RAMP, "needs at least two"),
     ({"kind": "final", "history": "bad"}, {"histories": {"bad": {"t": [0, 1], "value": [1]}}}, "t has 2 samples"),

@@ -212,6 +212,11 @@ def step_inflow_volume_semi_infinite(t, *, p0, p1, aperture, viscosity, fluid_bu
     return 2.0 * S * rise * np.sqrt(D * t / math.pi)
 
 
+def _since(t, start_time):
+    """t - start_time, the time since the step (checked positive by the caller's _time)."""
+    return _arr(t) - _finite("start_time", start_time, "s")
+
+
 _FAR_ENDS = ("fixed", "impermeable")
 
 
@@ -306,7 +311,7 @@ def _finite_mouth_flux(far_end, tau, use_fourier, cumulative):
 
 
 def step_pressure_finite(t, *, x, p0, p1, length, far_end, aperture, viscosity,
-                         fluid_bulk_modulus, normal_stiffness=math.inf, series="auto"):
+                         fluid_bulk_modulus, normal_stiffness=math.inf, series="auto", start_time=0.0):
     """p(x, t) (Pa) in a joint 0 <= x <= L at p0 whose mouth is raised to p1 at t = 0, the far end
     x = L either held at p0 (far_end = "fixed") or closed (far_end = "impermeable").
 
@@ -327,9 +332,11 @@ def step_pressure_finite(t, *, x, p0, p1, length, far_end, aperture, viscosity,
     truncation error is far below 1e-12 and rounding (~1e-15 relative to p1 - p0) limits the
     accuracy; "fourier" or "images" forces one series at every tau (the number of terms grows
     as 1 / sqrt(tau) or sqrt(tau)), which the tests use to check one against the other.
+    start_time: the time of the step on the clock of t (a run whose flow starts after a phase
+    that settles the blocks); the solution is taken at t - start_time.
     """
-    L, _, _, tau, use_fourier = _finite_joint_setup(far_end, series, length, t, aperture, viscosity,
-                                                    fluid_bulk_modulus, normal_stiffness)
+    L, _, _, tau, use_fourier = _finite_joint_setup(far_end, series, length, _since(t, start_time), aperture,
+                                                    viscosity, fluid_bulk_modulus, normal_stiffness)
     x = _arr(x)
     if np.any(~((x >= 0.0) & (x <= L))):
         raise ValueError(f"x = {x} m: a point of the joint lies in [0, length = {length}] m")
@@ -355,7 +362,7 @@ def step_inflow_rate_finite(t, *, p0, p1, length, far_end, aperture, viscosity, 
 
 
 def step_inflow_volume_finite(t, *, p0, p1, length, far_end, aperture, viscosity, fluid_bulk_modulus,
-                              normal_stiffness=math.inf, series="auto"):
+                              normal_stiffness=math.inf, series="auto", start_time=0.0):
     """V(t) (m^2): the volume per unit width that has entered the mouth by time t, the integral
     of step_inflow_rate_finite, V = S (p1 - p0) L G(tau) (T / D = S) with G the integral of F:
 
@@ -366,9 +373,10 @@ def step_inflow_volume_finite(t, *, p0, p1, length, far_end, aperture, viscosity
     s_m = 1 (fixed) or (-1)^m (impermeable); 1/3 and 1 are the sums 2 sum 1 / lam^2. A closed
     joint ends full, V = S (p1 - p0) L. Through a fixed far end V tends to
     (T (p1 - p0) / L) t + S (p1 - p0) L / 3: the joint stores S (p1 - p0) L / 2 (the linear
-    profile) and the far end's outflow lags the steady rate by S (p1 - p0) L / 6."""
-    L, _, S, tau, use_fourier = _finite_joint_setup(far_end, series, length, t, aperture, viscosity,
-                                                    fluid_bulk_modulus, normal_stiffness)
+    profile) and the far end's outflow lags the steady rate by S (p1 - p0) L / 6. start_time as
+    in step_pressure_finite."""
+    L, _, S, tau, use_fourier = _finite_joint_setup(far_end, series, length, _since(t, start_time), aperture,
+                                                    viscosity, fluid_bulk_modulus, normal_stiffness)
     _, rise = _step(p0, p1)
     return S * rise * L * _finite_mouth_flux(far_end, tau, use_fourier, cumulative=True)
 

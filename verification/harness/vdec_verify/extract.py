@@ -32,8 +32,10 @@ closure (positive closing) from a block's displacement (positive up); default 1.
                                                       phase of that name (results["phases"]): a phased run's
                                                       state after each phase
     run_meta       path                               a number at a dotted path in results["run"],
-                                                      results["energy"] or results["fluid"], e.g.
-                                                      "energy.largest_excess", "fluid.balance.imbalance"
+                                                      results["energy"], results["fluid"] or
+                                                      results["phases"] (a phase by its name), e.g.
+                                                      "energy.largest_excess", "fluid.balance.imbalance",
+                                                      "phases.diffuse.start_time"
     exit_code      (none)                             the exit code of the run
     differences    against, keys                      how many values differ between this run's results.json
                                                       and the run `against` ("plain" or a variant's name), over
@@ -271,6 +273,13 @@ def differences(results, table, runs):
 def run_meta(results, table):
     node = results
     for part in table["path"].split("."):
+        if isinstance(node, list):
+            # results["phases"] is a list of objects named by "name": "phases.NAME.FIELD".
+            named = [item for item in node if isinstance(item, dict) and item.get("name") == part]
+            if not named:
+                raise ExtractError(f"the results have no field '{table['path']}' (no phase named '{part}')")
+            node = named[0]
+            continue
         if not isinstance(node, dict) or part not in node:
             raise ExtractError(f"the results have no field '{table['path']}' (missing '{part}')")
         node = node[part]
