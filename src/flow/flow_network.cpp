@@ -79,9 +79,7 @@ void buildFlowNetwork(Model& m, bool carry) {
   const int nBlocks = m.blocks.size();
 
   // Rings: each outline of each block, its vertices numbered along it.
-  static thread_local std::vector<int> ringOf, orderOf;
-  ringOf.assign(vx.size(), -1);
-  orderOf.assign(vx.size(), 0);
+  std::vector<int> ringOf(vx.size(), -1), orderOf(vx.size(), 0);
   for (int b = 0; b < nBlocks; ++b) {
     int ring = 0;
     const int first = m.blocks.firstVertex[b], last = first + m.blocks.vertexCount[b];
@@ -277,10 +275,6 @@ void buildFlowNetwork(Model& m, bool carry) {
       sidePlace[2 * k + 1] = {ringOf[vb], orderOf[vb], tb, tb == 0.0 && !edge && vb == p.featureVertex ? p.featureTurn : 0.0,
                               2 * knots[k].key + 1};
     }
-    for (std::size_t s = 0; s < sides.size(); ++s) {
-      sides[s].ring = sidePlace[s].ring;
-      sides[s].order = sidePlace[s].order;
-    }
     // By block (a counting sort), then along each block's boundary (a few sides each).
     std::vector<int> blockStart(nBlocks + 1, 0);
     for (const FlowSide& side : sides) ++blockStart[side.block + 1];
@@ -293,7 +287,9 @@ void buildFlowNetwork(Model& m, bool carry) {
     for (std::size_t start = 0; start < byBlock.size();) {
       std::size_t end = start;
       const FlowSide& s0 = sides[byBlock[start]];
-      while (end < byBlock.size() && sides[byBlock[end]].block == s0.block && sides[byBlock[end]].ring == s0.ring) ++end;
+      while (end < byBlock.size() && sides[byBlock[end]].block == s0.block &&
+             sidePlace[byBlock[end]].ring == sidePlace[byBlock[start]].ring)
+        ++end;
       for (std::size_t k = start; k < end; ++k) sides[byBlock[k]].next = byBlock[k + 1 < end ? k + 1 : start];
       start = end;
     }
@@ -349,7 +345,6 @@ void buildFlowNetwork(Model& m, bool carry) {
       if (to < 0) continue;
       side.vertex = to;
       side.t = 0.0;
-      side.order = orderOf[to];
       sidePlace[s].order = orderOf[to];
       sidePlace[s].t = 0.0;
       moved = true;

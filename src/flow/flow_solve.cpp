@@ -14,14 +14,12 @@
 
 namespace vdec {
 
-void solveFlow(Model& m, double h, bool steady) {
+void solveFlow(Model& m, const std::vector<double>& conductance, double h, bool steady) {
   FlowState& fs = m.flow;
   const int n = static_cast<int>(fs.domains.size());
   const double kw = fs.fluid.bulkModulus;
   // Piezometric pressure p* = p + offset, offset = -rho_w g . x.
   auto offset = [&](Vec2 at) { return -fs.fluid.density * dot(m.gravity, at); };
-  std::vector<double> conductance(fs.knots.size());
-  for (std::size_t k = 0; k < fs.knots.size(); ++k) conductance[k] = knotConductance(m, fs.knots[k]);
   auto heldMouth = [&](const FlowKnot& k) { return k.boundary >= 0; };
 
   // Steady: only the domains from which fluid can reach a held pressure have a steady pressure;

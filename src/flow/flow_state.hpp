@@ -66,8 +66,6 @@ struct FlowSide {
   int block = -1;
   int vertex = -1;
   double t = 0.0;
-  int ring = 0;       // which outline of the block (an annulus has two)
-  int order = 0;      // place of the vertex along its ring
   int next = -1;      // the next side along the block's ring, counter-clockwise
   bool wraps = false; // the boundary from here to `next` goes round past the ring's start (or is all of it)
   int domain = -1;    // the domain the boundary from here to `next` faces
@@ -89,8 +87,7 @@ struct FlowDomain {
   int growing = 0;              // sub-steps the change has alternated in sign and grown
 };
 
-// Running totals of the fluid (m^2 per unit thickness since the flow began): the balance
-// inflow - outflow - stored - released must close to round-off.
+// Running totals of the fluid (m^2 per unit thickness since the flow came on): the balance
 // inflow - outflow + created - removed - (content - initial content) is zero to round-off.
 struct FlowTotals {
   double inflow = 0.0;          // through held mouths and domains and from sources, into the model

@@ -64,8 +64,7 @@ double knotConductance(const Model& m, const FlowKnot& k) {
   return k.aperture * k.aperture * k.aperture / (12.0 * m.flow.fluid.viscosity * k.length);  // 1.4-8
 }
 
-double knotFlow(const Model& m, const FlowKnot& k, double dp) {
-  const double c = knotConductance(m, k);
+double knotFlow(const Model& m, const FlowKnot& k, double c, double dp) {
   const double tauY = m.flow.fluid.yieldStress;
   if (tauY <= 0.0 || m.jointMaterials[k.joint].law == JointLaw::PointContact) return c * dp;
   // Bingham: no flow below the threshold gradient J0 = 2 tau_y / a (1.4-6), a pressure
@@ -78,14 +77,12 @@ double knotFlow(const Model& m, const FlowKnot& k, double dp) {
   return c * dp * (1.0 - 1.5 * r + 0.5 * r * r * r);
 }
 
-double fluidTimeStep(const Model& m) {
+double fluidTimeStep(const Model& m, const std::vector<double>& conductance) {
   const FlowState& fs = m.flow;
   std::vector<double> sum(fs.domains.size(), 0.0);
-  for (const FlowKnot& k : fs.knots) {
-    const double c = knotConductance(m, k);
-    for (const int d : k.domain)
-      if (d >= 0) sum[d] += c;
-  }
+  for (std::size_t k = 0; k < fs.knots.size(); ++k)
+    for (const int d : fs.knots[k].domain)
+      if (d >= 0) sum[d] += conductance[k];
   double dt = INFINITY;
   for (std::size_t d = 0; d < fs.domains.size(); ++d)
     if (!fs.domains[d].fixed && sum[d] > 0.0) dt = std::min(dt, fs.domains[d].area / (fs.fluid.bulkModulus * sum[d]));
@@ -140,21 +137,23 @@ namespace {
 // under the largest pressure in the model (a dead-end network at rest passes none at all).
 // Besides, for the schemes that set the pressures by a solve (steady has no net inflow at all),
 // the largest change of a domain's pressure in the step over the pressure scale.
-void measureUnbalance(Model& m, const std::vector<double>& before) {
+void measureUnbalance(Model& m, const std::vector<double>& conductance, const std::vector<double>& before) {
   FlowState& fs = m.flow;
   std::vector<int> fed(fs.boundaries.size(), 0);
   for (const FlowDomain& d : fs.domains)
     if (d.boundary >= 0 && !d.fixed) ++fed[d.boundary];
   std::vector<double> net(fs.domains.size(), 0.0);
-  double scale = 0.0, conductance = 0.0;
+  double scale = 0.0;
   for (const FlowDomain& d : fs.domains) scale = std::max(scale, std::abs(d.pressure));
-  for (const FlowKnot& k : fs.knots) {
+  double through = 0.0;
+  for (std::size_t i = 0; i < fs.knots.size(); ++i) {
+    const FlowKnot& k = fs.knots[i];
     if (k.domain[0] >= 0) net[k.domain[0]] -= k.flow;
     if (k.domain[1] >= 0) net[k.domain[1]] += k.flow;
-    conductance += knotConductance(m, k);
+    through += conductance[i];
     if (k.boundary >= 0) scale = std::max(scale, std::abs(boundaryValue(m, fs.boundaries[k.boundary], k.point)));
   }
-  const double through = conductance * std::max(scale, 1.0);
+  through *= std::max(scale, 1.0);
   double unbalanced = 0.0;
   for (std::size_t d = 0; d < fs.domains.size(); ++d) {
     const FlowDomain& dom = fs.domains[d];
@@ -181,13 +180,16 @@ void stepFlow(Model& m, double dt) {
   for (const FlowDomain& d : fs.domains) before.push_back(d.pressure);
   buildFlowNetwork(m, true);
   holdFixedDomains(m);
+  // The apertures are those the motion left: the conductances hold over the step.
+  std::vector<double> conductance(fs.knots.size());
+  for (std::size_t k = 0; k < fs.knots.size(); ++k) conductance[k] = knotConductance(m, fs.knots[k]);
   if (fs.fluid.scheme != FlowScheme::Explicit) {
-    solveFlow(m, dt, fs.fluid.scheme == FlowScheme::Steady);
-    measureUnbalance(m, before);
+    solveFlow(m, conductance, dt, fs.fluid.scheme == FlowScheme::Steady);
+    measureUnbalance(m, conductance, before);
     return;
   }
   const double kw = fs.fluid.bulkModulus;
-  const double dtFluid = fluidTimeStep(m);
+  const double dtFluid = fluidTimeStep(m, conductance);
   const double subSteps = std::isfinite(dtFluid) ? std::ceil(dt / (fs.fluid.stepFraction * dtFluid)) : 1.0;
   if (subSteps > kMostSubSteps) {
     std::ostringstream s;
@@ -208,7 +210,8 @@ void stepFlow(Model& m, double dt) {
   for (std::size_t b = 0; b < fs.boundaries.size(); ++b)
     if (fs.boundaries[b].inflow && fed[b] > 0) rate[b] = boundaryValue(m, fs.boundaries[b], {}) / fed[b];
   for (int step = 0; step < n; ++step) {
-    for (FlowKnot& k : fs.knots) {
+    for (std::size_t kk = 0; kk < fs.knots.size(); ++kk) {
+      FlowKnot& k = fs.knots[kk];
       double side[2];
       bool open = true;
       for (int i = 0; i < 2; ++i) {
@@ -221,7 +224,7 @@ void stepFlow(Model& m, double dt) {
         k.flow = 0.0;
         continue;
       }
-      const double q = knotFlow(m, k, side[0] - side[1]);
+      const double q = knotFlow(m, k, conductance[kk], side[0] - side[1]);
       k.flow = q;
       passThroughKnot(fs, k, q * h);
     }
@@ -245,7 +248,7 @@ void stepFlow(Model& m, double dt) {
     }
   }
   fs.totals.subSteps += n;
-  measureUnbalance(m, before);
+  measureUnbalance(m, conductance, before);
 }
 
 double fluidMechanicalTimeStep(const Model& m, double frac) {

@@ -2,6 +2,8 @@
 // Fracture flow's two stages (1.2, Fig. 1.2-5; 1.4.2): the domain pressures as forces on the
 // blocks' edges, and, after the motion, the flow through the knots over the mechanical step in
 // fluid sub-steps within the stability limit 1.4-11.
+#include <vector>
+
 #include "core/model.hpp"
 
 namespace vdec {
@@ -20,15 +22,15 @@ void stepFlow(Model& model, double dt);
 // The flow rate through a knot (m^2/s, from its domain[0] side to its domain[1] side) for the
 // piezometric pressure difference dp across it (1.4-7, 1.4-8; Bingham: the linear law or
 // Buckingham's).
-double knotFlow(const Model& model, const FlowKnot& knot, double dp);
+double knotFlow(const Model& model, const FlowKnot& knot, double conductance, double dp);
 // Moves `volume` (m^2) through the knot from its domain[0] side to its domain[1] side: between
 // the domains' contents, or in or out of the model at a mouth (the fluid account).
 void passThroughKnot(FlowState& flow, const FlowKnot& knot, double volume);
 // Its conductance, flow over pressure difference for a Newtonian fluid (m^2/(Pa s)).
 double knotConductance(const Model& model, const FlowKnot& knot);
 
-// 1.4-11: the largest stable fluid step (s) of the network as it is.
-double fluidTimeStep(const Model& model);
+// 1.4-11: the largest stable fluid step (s) of the network with the knots' conductances.
+double fluidTimeStep(const Model& model, const std::vector<double>& conductance);
 
 // The largest mechanical step (s) the fluid's stiffness allows: a domain's pressure rises by
 // K_w dA / A when the blocks around it close it, a spring on their motion. Rigid blocks: FRAC
