@@ -385,7 +385,7 @@ void buildFlowNetwork(Model& m, bool carry) {
   const double kw = fs.fluid.bulkModulus;
   auto fill = [&](FlowDomain& d, double p) {
     d.pressure = p;
-    d.content = d.area * (1.0 + p / kw);
+    d.content = p == 0.0 ? d.area * fs.fluid.initialSaturation : d.area * (1.0 + p / kw);
   };
   if (!carry) {
     for (FlowDomain& d : domains) fill(d, initialPressure(m, d.centre));
@@ -433,7 +433,7 @@ void buildFlowNetwork(Model& m, bool carry) {
     for (std::size_t d = 0; d < domains.size(); ++d) {
       FlowDomain& dom = domains[d];
       if (reached[d]) {
-        dom.pressure = kw * (dom.content / dom.area - 1.0);
+        dom.pressure = domainPressure(kw, dom.content, dom.area);
       } else {
         fill(dom, initialPressure(m, dom.centre));
         fs.totals.created += dom.content;
@@ -442,7 +442,7 @@ void buildFlowNetwork(Model& m, bool carry) {
     // The instability watch follows a domain that stays the same.
     for (const auto& [o, d] : links) {
       domains[d].lastChange = fs.domains[o].lastChange;
-      domains[d].growing = fs.domains[o].growing;
+      domains[d].swings = fs.domains[o].swings;
     }
   }
 

@@ -3,6 +3,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <vector>
@@ -69,7 +70,8 @@ void solveFlow(Model& m, const std::vector<double>& conductance, double h, bool 
   std::vector<int> unknown(n, -1);
   int count = 0;
   for (int d = 0; d < n; ++d)
-    if (!fs.domains[d].fixed && reached[d]) unknown[d] = count++;
+    // A partly saturated domain stays at zero pressure while it fills (implicit): known, not solved for.
+    if (!fs.domains[d].fixed && reached[d] && (steady || fs.domains[d].content >= fs.domains[d].area)) unknown[d] = count++;
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(count);
   for (int d = 0; d < n; ++d) {
@@ -128,6 +130,7 @@ void solveFlow(Model& m, const std::vector<double>& conductance, double h, bool 
   // Steady: a group of domains that no held pressure reaches comes to rest at one piezometric
   // pressure, the one at which it holds the fluid it has (hydrostatic under gravity).
   std::vector<char> settled(n, 0);
+  std::vector<double> restContent(n, -1.0);  // of a group's domains not all full; -1 elsewhere
   if (steady) {
     for (int start = 0; start < n; ++start) {
       if (reached[start] || settled[start] || fs.domains[start].fixed) continue;
@@ -136,14 +139,39 @@ void solveFlow(Model& m, const std::vector<double>& conductance, double h, bool 
       for (std::size_t i = 0; i < group.size(); ++i)
         for (const int e : links[group[i]])
           if (!settled[e]) settled[e] = 1, group.push_back(e);
-      double content = 0.0, area = 0.0, weighted = 0.0;
-      for (const int d : group) {
-        content += fs.domains[d].content;
-        area += fs.domains[d].area;
-        weighted += fs.domains[d].area * offset(fs.domains[d].centre);
+      // The fluid fills the group from its lowest domain up: below the level full, under the
+      // hydrostatic pressure from it; the domain at the level partly saturated; those above dry.
+      std::sort(group.begin(), group.end(), [&](int a, int b) {
+        const double oa = offset(fs.domains[a].centre), ob = offset(fs.domains[b].centre);
+        return oa != ob ? oa < ob : a < b;
+      });
+      double content = 0.0;
+      for (const int d : group) content += fs.domains[d].content;
+      double area = 0.0, weighted = 0.0;
+      std::size_t full = 0;
+      for (; full < group.size(); ++full) {
+        const FlowDomain& next = fs.domains[group[full]];
+        const double level = offset(next.centre);
+        // What the domains below hold with the level at this domain's centre, and this one full too.
+        const double below = area + (area * level - weighted) / kw;
+        if (content < below + next.area) break;
+        area += next.area;
+        weighted += next.area * level;
       }
-      const double level = (kw * (content - area) + weighted) / area;
-      for (const int d : group) piezometric[d] = level;
+      if (full == group.size()) {
+        const double level = (kw * (content - area) + weighted) / area;
+        for (const int d : group) piezometric[d] = level;
+      } else {
+        const int partial = group[full];
+        const double level = offset(fs.domains[partial].centre);
+        const double below = area + (area * level - weighted) / kw;
+        for (std::size_t i = 0; i < group.size(); ++i) {
+          const int d = group[i];
+          piezometric[d] = i < full ? level : offset(fs.domains[d].centre);
+          restContent[d] = i < full ? fs.domains[d].area * (1.0 + (level - offset(fs.domains[d].centre)) / kw)
+                           : i == full ? std::max(content - below, 0.0) : 0.0;
+        }
+      }
     }
   }
   for (std::size_t k = 0; k < fs.knots.size(); ++k) {
@@ -156,9 +184,12 @@ void solveFlow(Model& m, const std::vector<double>& conductance, double h, bool 
     }
     const double p0 = knot.domain[0] >= 0 ? piezometric[knot.domain[0]] : known[0];
     const double p1 = knot.domain[1] >= 0 ? piezometric[knot.domain[1]] : known[1];
-    knot.flow = conductance[k] * (p0 - p1);
-    passThroughKnot(fs, knot, knot.flow * h);
+    // A group at rest passes nothing (its dry domains' heads differ, and no fluid is there to pass).
+    const bool atRest = knot.domain[0] >= 0 && knot.domain[1] >= 0 && settled[knot.domain[0]] && settled[knot.domain[1]];
+    knot.flow = atRest ? 0.0 : conductance[k] * (p0 - p1);
   }
+  if (!steady) limitDrainage(fs, h);
+  for (const FlowKnot& knot : fs.knots) passThroughKnot(fs, knot, knot.flow * h);
   for (int d = 0; d < n; ++d) {
     FlowDomain& dom = fs.domains[d];
     if (source[d] != 0.0) {
@@ -175,13 +206,16 @@ void solveFlow(Model& m, const std::vector<double>& conductance, double h, bool 
     } else if (steady && (unknown[d] >= 0 || settled[d])) {
       // No storage in a steady flow: the domain holds what its steady pressure compresses into
       // it, the difference from what the flow left there given or taken by the solve.
-      dom.pressure = piezometric[d] - offset(dom.centre);
-      const double content = dom.area * (1.0 + dom.pressure / kw);
+      // A suction in the solve leaves the domain partly saturated at zero pressure.
+      const double solvedPressure = piezometric[d] - offset(dom.centre);
+      dom.pressure = std::max(solvedPressure, 0.0);
+      const double content = restContent[d] >= 0.0 ? restContent[d] : dom.area * (1.0 + solvedPressure / kw);
       if (content > dom.content) fs.totals.created += content - dom.content;
       else fs.totals.removed += dom.content - content;
       dom.content = content;
     } else {
-      dom.pressure = kw * (dom.content / dom.area - 1.0);
+      if (dom.content < 0.0) emptied(fs, dom);
+      dom.pressure = domainPressure(kw, dom.content, dom.area);
     }
   }
   fs.subStep = h;

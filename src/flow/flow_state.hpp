@@ -26,6 +26,8 @@ struct FluidProperties {
   bool buckingham = false;       // Bingham flow by Buckingham's law rather than the linear one
   FlowScheme scheme = FlowScheme::Explicit;
   double initialPressure = 0.0;  // Pa, where no water table is given (or above it)
+  // Of the domains whose initial pressure is zero: 1 full, 0 dry (a grout's joint before injection).
+  double initialSaturation = 1.0;
   double waterTable = NAN;       // y of a hydrostatic water table (NaN: none)
   double stepFraction = 0.8;     // the fluid sub-step as a fraction of the stability limit 1.4-11
   double minDomainArea = 0.0;    // m^2 per unit thickness; the builder sets the default
@@ -71,12 +73,20 @@ struct FlowSide {
   int domain = -1;    // the domain the boundary from here to `next` faces
 };
 
+// A domain holding less fluid than its volume is partly saturated at zero pressure (the joints
+// take no suction, as the reference's unsaturated-saturated demarcation at a phreatic surface);
+// full, its pressure is the fluid's compression K_w (content / area - 1).
+inline double domainPressure(double bulkModulus, double content, double area) {
+  return content > area ? bulkModulus * (content / area - 1.0) : 0.0;
+}
+
 struct FlowDomain {
   std::int64_t key = 0;         // the smallest key of its sides
   double pressure = 0.0;        // Pa
   double area = 0.0;            // m^2 per unit thickness (volume of the void)
-  // The fluid it holds, as its volume at zero pressure: area (1 + p / K_w). Flow moves content,
-  // and the pressure follows from content and area, so the fluid is conserved to round-off.
+  // The fluid it holds, as its volume at zero pressure: area (1 + p / K_w) when full, less when
+  // partly saturated. Flow moves content, and the pressure follows from content and area
+  // (domainPressure), so the fluid is conserved to round-off.
   double content = 0.0;
   Vec2 centre;
   double perimeter = 0.0;
@@ -84,7 +94,7 @@ struct FlowDomain {
   int boundary = -1;            // the FlowBoundary holding or feeding it
   bool atMinimumArea = false;   // its area is the floor min_domain_area
   double lastChange = 0.0;      // of the pressure in the last sub-step, for the instability check
-  int growing = 0;              // sub-steps the change has alternated in sign and grown
+  int swings = 0;               // sub-steps in a row the change has alternated in sign and not decayed
 };
 
 // Running totals of the fluid (m^2 per unit thickness since the flow came on): the balance

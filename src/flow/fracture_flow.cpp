@@ -15,9 +15,14 @@ namespace {
 
 // More fluid sub-steps than this in one mechanical step is a scene to change, not to wait for.
 constexpr long long kMostSubSteps = 100000;
-// Sub-steps in a row over which a domain's pressure change may alternate in sign and grow before
-// the flow is called unstable: a stable explicit update damps every such mode at once.
-constexpr int kGrowingLimit = 20;
+// Sub-steps in a row over which a domain's pressure change may alternate in sign without
+// decaying before the flow is called unstable: below the stability limit the explicit update
+// damps every alternating mode at once (by 1 - 2 step_fraction at worst). Without decay, not
+// only with growth: beyond the limit, the zero-pressure floor of partly saturated domains turns
+// the growth into a steady alternation (full and drained domains taking turns), as wrong.
+constexpr int kSwingLimit = 20;
+constexpr double kUndamped = 0.999;
+constexpr double kRoundOff = 1e-12;
 
 // p - rho_w g . x: with gravity the fluid flows down its gradient, not the pressure's.
 double piezometric(const Model& m, double p, Vec2 at) { return p - m.flow.fluid.density * dot(m.gravity, at); }
@@ -56,6 +61,31 @@ void passThroughKnot(FlowState& fs, const FlowKnot& k, double volume) {
   if (k.domain[1] >= 0) fs.domains[k.domain[1]].content += volume;
   else if (volume > 0.0) fs.totals.outflow += volume;
   else fs.totals.inflow -= volume;
+}
+
+void emptied(FlowState& fs, FlowDomain& d) {
+  // Drained by limitDrainage to what it held, less the round-off of summing its outflows.
+  fs.totals.created -= d.content;
+  d.content = 0.0;
+}
+
+void limitDrainage(FlowState& fs, double h) {
+  // A partly saturated domain is at zero pressure, so it drains only under gravity; it passes
+  // on at most what it holds, its outflows scaled alike, so that no content goes negative.
+  std::vector<double> out(fs.domains.size(), 0.0);
+  for (const FlowKnot& k : fs.knots) {
+    if (k.flow > 0.0 && k.domain[0] >= 0) out[k.domain[0]] += k.flow * h;
+    if (k.flow < 0.0 && k.domain[1] >= 0) out[k.domain[1]] -= k.flow * h;
+  }
+  std::vector<double> scale(fs.domains.size(), 1.0);
+  for (std::size_t d = 0; d < fs.domains.size(); ++d) {
+    const FlowDomain& dom = fs.domains[d];
+    if (!dom.fixed && dom.content < dom.area && out[d] > dom.content) scale[d] = std::max(dom.content, 0.0) / out[d];
+  }
+  for (FlowKnot& k : fs.knots) {
+    const int from = k.flow > 0.0 ? k.domain[0] : k.domain[1];
+    if (from >= 0) k.flow *= scale[from];
+  }
 }
 
 double knotConductance(const Model& m, const FlowKnot& k) {
@@ -209,6 +239,8 @@ void stepFlow(Model& m, double dt) {
   std::vector<double> rate(fs.boundaries.size(), 0.0);
   for (std::size_t b = 0; b < fs.boundaries.size(); ++b)
     if (fs.boundaries[b].inflow && fed[b] > 0) rate[b] = boundaryValue(m, fs.boundaries[b], {}) / fed[b];
+  bool partlySaturated = false;
+  for (const FlowDomain& d : fs.domains) partlySaturated = partlySaturated || (!d.fixed && d.content < d.area);
   for (int step = 0; step < n; ++step) {
     for (std::size_t kk = 0; kk < fs.knots.size(); ++kk) {
       FlowKnot& k = fs.knots[kk];
@@ -224,10 +256,11 @@ void stepFlow(Model& m, double dt) {
         k.flow = 0.0;
         continue;
       }
-      const double q = knotFlow(m, k, conductance[kk], side[0] - side[1]);
-      k.flow = q;
-      passThroughKnot(fs, k, q * h);
+      k.flow = knotFlow(m, k, conductance[kk], side[0] - side[1]);
     }
+    if (partlySaturated) limitDrainage(fs, h);
+    for (const FlowKnot& k : fs.knots) passThroughKnot(fs, k, k.flow * h);
+    partlySaturated = false;
     for (FlowDomain& d : fs.domains) {
       if (d.fixed) {
         hold(fs, d, boundaryValue(m, fs.boundaries[d.boundary], d.centre));
@@ -237,12 +270,18 @@ void stepFlow(Model& m, double dt) {
         d.content += rate[d.boundary] * h;
         fs.totals.inflow += rate[d.boundary] * h;
       }
-      const double p = kw * (d.content / d.area - 1.0);
+      if (d.content < 0.0) emptied(fs, d);
+      const double p = domainPressure(kw, d.content, d.area);
       if (!std::isfinite(p)) unstable(m, d, "is no longer a finite number");
+      partlySaturated = partlySaturated || d.content < d.area;
       const double change = p - d.pressure;
-      d.growing = (change * d.lastChange < 0.0 && std::abs(change) > std::abs(d.lastChange)) ? d.growing + 1 : 0;
-      if (d.growing >= kGrowingLimit)
-        unstable(m, d, "has swung back and forth with growing amplitude for " + std::to_string(kGrowingLimit) + " sub-steps");
+      // Round-off swings too, at steady flow: a swing counts above its level (a content's last
+      // digits times K_w).
+      const bool swings = change * d.lastChange < 0.0 && std::abs(change) >= kUndamped * std::abs(d.lastChange) &&
+                          std::abs(change) > kRoundOff * (kw + std::abs(p));
+      d.swings = swings ? d.swings + 1 : 0;
+      if (d.swings >= kSwingLimit)
+        unstable(m, d, "has swung back and forth without decaying for " + std::to_string(kSwingLimit) + " sub-steps");
       d.lastChange = change;
       d.pressure = p;
     }

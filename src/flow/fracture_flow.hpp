@@ -16,7 +16,7 @@ void startFlow(Model& model);
 void applyDomainPressures(Model& model);
 
 // The network formed again from the contacts the motion left, then the flow over the step dt.
-// Stops the run (InstabilityError) when the pressures oscillate with growing amplitude.
+// Stops the run (InstabilityError) when a domain's pressure oscillates without decaying.
 void stepFlow(Model& model, double dt);
 
 // The flow rate through a knot (m^2/s, from its domain[0] side to its domain[1] side) for the
@@ -26,6 +26,11 @@ double knotFlow(const Model& model, const FlowKnot& knot, double conductance, do
 // Moves `volume` (m^2) through the knot from its domain[0] side to its domain[1] side: between
 // the domains' contents, or in or out of the model at a mouth (the fluid account).
 void passThroughKnot(FlowState& flow, const FlowKnot& knot, double volume);
+// Scales the knots' flows (m^2/s, over a step h) out of each partly saturated domain so that it
+// passes on at most the fluid it holds.
+void limitDrainage(FlowState& flow, double h);
+// Sets the content a drained domain has left below zero by round-off to zero (the account's `created`).
+void emptied(FlowState& flow, FlowDomain& domain);
 // Its conductance, flow over pressure difference for a Newtonian fluid (m^2/(Pa s)).
 double knotConductance(const Model& model, const FlowKnot& knot);
 

@@ -53,7 +53,7 @@ FlowBoundaryDefinition readFlowBoundary(TableReader& r) {
   if (given != 1)
     r.failTable(given == 0 ? "gives no condition: give pressure (Pa), water_table (m) or inflow (m^2/s per unit thickness)"
                            : "give one of pressure, water_table and inflow");
-  if (r.has("pressure")) b.value = r.number("pressure");
+  if (r.has("pressure")) b.value = r.nonNegative("pressure", 0.0);
   if (r.has("water_table")) b.waterTable = r.number("water_table");
   if (r.has("inflow")) {
     b.inflow = true;
@@ -87,8 +87,18 @@ void readFluid(TableReader& top, SceneDefinition& scene) {
                         "by the explicit scheme only");
     if (f.scheme != FlowScheme::Explicit && t->has("step_fraction"))
       t->fail("step_fraction", "sets the explicit scheme's sub-step; the '" + scheme + "' scheme takes none");
-    f.initialPressure = t->number("initial_pressure", 0.0);
+    f.initialPressure = t->nonNegative("initial_pressure", 0.0);
     if (t->has("water_table")) f.waterTable = t->number("water_table");
+    if (t->has("initial_saturation")) {
+      f.initialSaturation = t->nonNegative("initial_saturation", 1.0);
+      if (f.initialSaturation > 1.0)
+        t->fail("initial_saturation", "must be in [0, 1]: the fraction of their volume the domains at zero initial "
+                                      "pressure hold (1 full, 0 dry)");
+      if (f.initialPressure > 0.0)
+        t->fail("initial_saturation", "applies to the domains at zero initial pressure, and initial_pressure > 0 "
+                                      "leaves none: drop one of the two (with a water_table, the domains above it "
+                                      "start at initial_pressure)");
+    }
     if (t->has("step_fraction")) {
       f.stepFraction = t->positive("step_fraction");
       if (f.stepFraction > 4.0)

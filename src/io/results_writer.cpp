@@ -1,5 +1,6 @@
 #include "io/results_writer.hpp"
 
+#include <algorithm>
 #include <unistd.h>
 
 #include <chrono>
@@ -96,7 +97,7 @@ void writeContinuum(nlohmann::json& j, const Model& m) {
 // points) and the fluid balance.
 void writeFlow(nlohmann::json& j, const Model& m) {
   const FlowState& fs = m.flow;
-  std::vector<double> dx, dy, pressure, area, content;
+  std::vector<double> dx, dy, pressure, area, content, saturation;
   std::vector<int> dBlock, fixed, atFloor;
   int floorCount = 0;
   for (const FlowDomain& d : fs.domains) {
@@ -106,12 +107,13 @@ void writeFlow(nlohmann::json& j, const Model& m) {
     pressure.push_back(d.pressure);
     area.push_back(d.area);
     content.push_back(d.content);
+    saturation.push_back(std::min(d.content / d.area, 1.0));
     fixed.push_back(d.fixed);
     atFloor.push_back(d.atMinimumArea);
     floorCount += d.atMinimumArea;
   }
   j["domains"] = {{"x0", dx}, {"y0", dy}, {"block", dBlock}, {"pressure", pressure}, {"area", area},
-                  {"content", content}, {"fixed", fixed}, {"at_minimum_area", atFloor}};
+                  {"content", content}, {"saturation", saturation}, {"fixed", fixed}, {"at_minimum_area", atFloor}};
   std::vector<double> kx, ky, aperture, length, flow, conductance;
   std::vector<int> kBlock, kOther, d0, d1, held;
   std::vector<std::string> boundary;

@@ -56,6 +56,14 @@ BAD = [
      "takes none"),
     ("water table without gravity", BASE.replace("viscosity = 1e-3", "viscosity = 1e-3\nwater_table = 1.0"),
      "water_table", "needs gravity"),
+    ("initial saturation above one", BASE.replace("viscosity = 1e-3", "viscosity = 1e-3\ninitial_saturation = 1.5"),
+     "initial_saturation", "[0, 1]"),
+    ("initial saturation with an initial pressure",
+     BASE.replace("viscosity = 1e-3", "viscosity = 1e-3\ninitial_pressure = 1e4\ninitial_saturation = 0.0"),
+     "initial_saturation", "initial_pressure > 0 leaves none"),
+    ("negative initial pressure", BASE.replace("viscosity = 1e-3", "viscosity = 1e-3\ninitial_pressure = -1e4"),
+     "initial_pressure", ">= 0"),
+    ("negative held pressure", BASE.replace("pressure = 1e5", "pressure = -1e5"), "pressure", ">= 0"),
     ("unknown fluid key", BASE.replace("viscosity = 1e-3", "viscosity = 1e-3\nporosity = 0.1"), "porosity", "unknown"),
     ("aperture without fluid", NO_FLUID.split("[[flow_boundary]]")[0], "aperture", "no [fluid] table"),
     ("flow boundary without fluid",
@@ -324,14 +332,123 @@ scheme = "steady"
 
 @pytest.mark.requirements("REQ-FLOW-003", "REQ-FLOW-005")
 def test_the_steady_scheme_brings_a_network_no_held_pressure_reaches_to_rest_holding_its_fluid(tmp_path):
-    # Four held blocks, no flow boundary: the joints start at zero pressure and, under gravity,
-    # settle at one piezometric pressure p + rho_w g y holding the fluid they had (no blow-up).
+    # Four held blocks, no flow boundary: the joints start full at zero pressure and, under
+    # gravity, come to rest holding the fluid they had, filled from the bottom up: the full
+    # domains at one piezometric pressure p + rho_w g y, the top one (whose fluid the compression
+    # of those below took) partly saturated at zero pressure, no suction (no blow-up either).
     done, results = run(tmp_path, FOUR_HELD_BLOCKS)
     assert done.returncode == 0, done.stderr
     d = results["domains"]
-    head = [p + 1000.0 * 9.81 * y for p, y in zip(d["pressure"], d["y0"])]
-    assert max(head) - min(head) <= 1e-9 * max(abs(p) for p in d["pressure"])
-    assert max(abs(p) for p in d["pressure"]) == pytest.approx(1000.0 * 9.81 * 0.505, rel=0.02, abs=0)
+    top = max(range(len(d["y0"])), key=lambda i: d["y0"][i])
+    full = [i for i in range(len(d["y0"])) if i != top]
+    assert all(d["saturation"][i] == 1.0 for i in full) and 0.99 < d["saturation"][top] < 1.0, d
+    assert d["pressure"][top] == 0.0 and min(d["pressure"]) >= 0.0, d
+    head = [d["pressure"][i] + 1000.0 * 9.81 * d["y0"][i] for i in full + [top]]
+    assert max(head) - min(head) <= 1e-9 * max(d["pressure"])
+    assert max(d["pressure"]) == pytest.approx(1000.0 * 9.81 * 1.01, rel=1e-9, abs=0)
     balance = results["fluid"]["balance"]
     assert abs(balance["imbalance"]) <= 1e-15 * balance["initial_content"]
     assert all(q == 0.0 for q in results["knots"]["flow"])
+
+
+HELD = BASE.replace("[[flow_boundary]]", "[[boundary]]\nblock = \"lower\"\nfix = [\"x\", \"y\"]\n"
+                    "[[boundary]]\nblock = \"upper\"\nfix = [\"x\", \"y\"]\n[[flow_boundary]]")
+
+
+@pytest.mark.requirements("REQ-FLOW-011")
+def test_a_dry_joint_fills_from_its_mouth_with_the_domains_ahead_of_the_front_dry_at_zero_pressure(tmp_path):
+    # The fixture's joint (four domains of 0.25 m) held still and dry at the start; its left mouth
+    # at 1e5 Pa. Density scaling makes the step 1 s (nothing moves); after 2 s the front is in the
+    # third domain.
+    held = HELD.replace("adaptive_damping = true", "density_scaling = true")
+    dry = held.replace("viscosity = 1e-3", "viscosity = 1e-3\ninitial_saturation = 0.0")
+    done, results = run(tmp_path, dry, "--set", "stop.cycles=2")
+    assert done.returncode == 0, done.stderr
+    d = results["domains"]
+    order = sorted(range(len(d["x0"])), key=lambda i: d["x0"][i])
+    saturation = [d["saturation"][i] for i in order]
+    pressure = [d["pressure"][i] for i in order]
+    assert saturation[0] == 1.0 and pressure[0] > 0.0, (saturation, pressure)
+    assert saturation[-1] == 0.0 and d["content"][order[-1]] == 0.0, saturation
+    assert all(p == 0.0 for p, s in zip(pressure, saturation) if s < 1.0), (saturation, pressure)
+    assert saturation == sorted(saturation, reverse=True), "the front advances from the mouth"
+    # Behind the front the flow is steady (the full domains' storage is a / K_w): the pressure falls
+    # linearly from the mouth to zero at the centre of the filling domain, 0.625 m along the knots.
+    filling = saturation.index(next(x for x in saturation if x < 1.0))
+    assert filling == 2, saturation
+    assert pressure[:2] == pytest.approx([1e5 * 0.5 / 0.625, 1e5 * 0.25 / 0.625], rel=1e-6, abs=0)
+    assert abs(results["fluid"]["balance"]["imbalance"]) <= 1e-12 * results["fluid"]["balance"]["inflow"]
+    # Fully saturated at the start (the default), the same joint takes in only the compression.
+    done, full = run(tmp_path, held, "--set", "stop.cycles=2", name="full")
+    assert min(full["domains"]["saturation"]) == 1.0
+    assert full["fluid"]["balance"]["inflow"] < 0.1 * results["fluid"]["balance"]["inflow"]
+
+
+VERTICAL = """[model]
+gravity = [0.0, -9.81]
+rounding = 0.01
+[solver]
+density_scaling = true
+[stop]
+cycles = 100
+[fluid]
+bulk_modulus = 2e6
+viscosity = 1e-3
+[[joint_material]]
+name = "j"
+kn = 1e10
+ks = 1e10
+friction = 30.0
+aperture = 1e-4
+residual_aperture = 1e-5
+[[block_material]]
+name = "rock"
+density = 2500.0
+young = 10e9
+poisson = 0.25
+[[block]]
+name = "left"
+material = "rock"
+vertices = [[-1.0, 0.0], [0.0, 0.0], [0.0, 1.0], [-1.0, 1.0]]
+zoning = { nx = 1, ny = 4 }
+[[block]]
+name = "right"
+material = "rock"
+vertices = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+zoning = { nx = 1, ny = 4 }
+[[boundary]]
+block = "left"
+fix = ["x", "y"]
+[[boundary]]
+block = "right"
+fix = ["x", "y"]
+[[flow_boundary]]
+name = "bottom"
+box = [-0.1, -0.1, 0.1, 0.05]
+pressure = 0.0
+[[history]]
+name = "top"
+quantity = "domain.pressure"
+point = [0.0, 0.875]
+"""
+
+
+@pytest.mark.requirements("REQ-FLOW-011")
+def test_a_vertical_joint_drains_through_its_bottom_mouth_and_its_top_domains_empty_without_suction(tmp_path):
+    # A vertical joint between held blocks, four domains of 0.25 m, full at zero pressure; under
+    # gravity the water leaves through the bottom mouth (held at 0). The domains drain from the
+    # top: none holds less than nothing, none takes a suction.
+    done, results = run(tmp_path, VERTICAL)
+    assert done.returncode == 0, done.stderr
+    d = results["domains"]
+    assert len(d["x0"]) == 4, d
+    order = sorted(range(4), key=lambda i: d["y0"][i])
+    saturation = [d["saturation"][i] for i in order]
+    assert saturation[-1] == 0.0 and saturation == sorted(saturation, reverse=True), saturation
+    assert min(d["content"]) >= 0.0 and min(d["pressure"]) >= 0.0, d
+    assert min(results["histories"]["top"]["value"]) >= 0.0
+    balance = results["fluid"]["balance"]
+    assert balance["outflow"] > 0.5 * balance["initial_content"], balance
+    # The drained domains passed on what they held, not more: no content made up for them.
+    assert balance["created"] <= 1e-15 * balance["initial_content"], balance
+    assert abs(balance["imbalance"]) <= 1e-12 * balance["initial_content"], balance
