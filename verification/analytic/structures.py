@@ -1,0 +1,363 @@
+"""Closed-form references for rock support (issue 15, "Verification"): grouted cables, frame beams,
+beams on an elastic foundation, bolts across a joint, a tunnel lining in an elastic medium and a
+roof wedge held by cables.
+
+Independent of the solver: only math, numpy and scipy are used. Every formula is either taken from
+the cited text or derived in its docstring in a few lines; where the model the solver integrates is
+discrete (springs at nodes, lumped masses), the discrete answer is given next to the continuum one,
+in closed form where one exists (the cable's recurrence, the trapezoidal sums of the beams) or by a
+small linear or eigenvalue problem solved with numpy/scipy, so that the solver can be held to
+round-off at any number of elements and the continuum to a stated discretisation error.
+
+Model (NUREG/CR-5429 1.2.6 and 1.4.4, 1.4-34 to 1.4-59): plane frame elements (Euler-Bernoulli:
+no shear deformation, no rotary inertia unless stated), stiffness EA/h, 12EI/h^3, 6EI/h^2, 4EI/h,
+2EI/h; masses lumped at the nodes; a cable of axial stiffness EA bonded to the rock by a grout
+spring-slider per unit length (stiffness k_bond, strength s_bond); local reinforcement with the
+orientation-dependent shear limit of 1.4-40.
+
+Sign conventions (stated again at each function): beam deflection w POSITIVE IN THE DIRECTION OF THE
+LOAD, rotation dw/dx, bending moment M = -EI w'' (sagging positive for a downward load); cable
+axial force TENSION POSITIVE, cable displacement s positive towards the head (out of the hole);
+lining pressures and thrust COMPRESSION POSITIVE, radial displacement positive INWARD (convergence).
+SI units: m, N, Pa; per unit length of beam or cable: q and s_bond in N/m, k (Winkler) and k_bond in
+N/m per m of length (N/m^2); per unit length of tunnel: thrust in N/m, the wedge weight in N/m.
+Angles are in degrees where the argument ends in _deg.
+Every function takes keyword arguments only, but the coordinate x along a beam or a cable, which
+comes first, as the harness passes it for a series; field functions accept numpy arrays.
+Nonsensical input (a negative length, EI <= 0, x off the member, a load beyond the capacity, ...) is a
+ValueError naming the argument.
+
+Sources: S. P. Timoshenko and J. M. Gere, Mechanics of Materials (the cantilever and simply supported
+beam formulas, any edition: "T&G"); R. D. Blevins, Formulas for Natural Frequency and Mode Shape, 1979,
+table 8-1 (the cantilever's beta_n L = 1.87510407, 4.69409113, 7.85475744, 10.99554073); M. Hetenyi,
+Beams on Elastic Foundation, University of Michigan Press, 1946 (the infinite beam under a point
+load, ch. III); H. H. Einstein and C. W. Schwartz, "Simplified analysis for tunnel supports",
+J. Geotech. Eng. Div. ASCE 105(GT4), 1979, 499-518 (the compressibility ratio C); S. Bjurstrom,
+"Shear strength of hard rock joints reinforced by grouted untensioned bolts", Proc. 3rd ISRM Congress,
+Denver, 1974 (the bolt's contribution to joint shear resistance); NUREG/CR-5429 Vol. 1 1.4.4
+(1.4-38 to 1.4-44, the reinforcement and grout laws). The formulas taken from these are each checked
+independently in tests/python/test_analytic_structures.py (a linear solve, an eigenvalue problem on
+another route, solve_bvp, quadrature, finite differences of the returned fields), so a misquoted
+source would show there.
+"""
+import math
+
+import numpy as np
+from scipy import linalg, optimize
+
+
+def _scalar(name, value):
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r}: must be a number") from None
+    if not math.isfinite(value):
+        raise ValueError(f"{name} = {value}: must be finite")
+    return value
+
+
+def _positive(name, value):
+    value = _scalar(name, value)
+    if not value > 0.0:
+        raise ValueError(f"{name} = {value}: must be positive")
+    return value
+
+
+def _non_negative(name, value):
+    value = _scalar(name, value)
+    if not value >= 0.0:
+        raise ValueError(f"{name} = {value}: must be zero or positive")
+    return value
+
+
+def _count(name, value, smallest=1):
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < smallest:
+        raise ValueError(f"{name} = {value!r}: must be a whole number >= {smallest}")
+    return int(value)
+
+
+def _along(x, length, what="member"):
+    """x as an array, refused unless 0 <= x <= length (the member's own coordinate)."""
+    x = np.asarray(x, dtype=float)
+    if np.any(~((x >= 0.0) & (x <= length))):
+        raise ValueError(f"x = {x}: must lie on the {what}, 0 <= x <= L = {length}")
+    return x
+
+
+def _angle(name, degrees, low, high):
+    degrees = _scalar(name, degrees)
+    if not low <= degrees <= high:
+        raise ValueError(f"{name} = {degrees}: must lie in [{low}, {high}] degrees")
+    return math.radians(degrees)
+
+
+# ================================================================ grouted cable, elastic bond
+#
+# A cable 0 <= x <= L, pulled at its head x = 0 by F0 (tension), in rigid rock. The grout is a
+# spring per unit length: the force per unit length on the cable is k_bond s, s(x) the cable's
+# displacement towards the head. The axial force F = -EA ds/dx (tension when s falls away from
+# the head), and a slice dx in equilibrium: dF/dx = k_bond s, so EA s'' = k_bond s.
+# With alpha = sqrt(k_bond / EA) and the far end free, F(L) = 0 and F(0) = F0:
+#
+#     s(x) = F0 cosh(alpha (L - x)) / (EA alpha sinh(alpha L)),   F(x) = F0 sinh(alpha (L - x)) / sinh(alpha L).
+#
+# The head stiffness F0 / s(0) = EA alpha tanh(alpha L): the issue's tanh is right for a FREE far
+# end (it tends to k_bond L, the bond of a rigid bar, as alpha L -> 0). With the far end ANCHORED
+# (s(L) = 0) instead, s = F0 sinh(alpha (L - x)) / (EA alpha cosh(alpha L)),
+# F = F0 cosh(alpha (L - x)) / cosh(alpha L) and the head stiffness is EA alpha coth(alpha L)
+# (-> EA / L, a bar fixed at its end, as alpha L -> 0). Both tend to EA alpha for a long cable.
+
+_FAR_ENDS = ("free", "anchored")
+
+
+def _cable(L, EA, k_bond):
+    L, EA, k_bond = _positive("L (cable length)", L), _positive("EA", EA), _positive("k_bond", k_bond)
+    return L, EA, math.sqrt(k_bond / EA)
+
+
+def _far_end(far_end):
+    if far_end not in _FAR_ENDS:
+        raise ValueError(f"far_end = {far_end!r}: must be one of {', '.join(_FAR_ENDS)}")
+    return far_end
+
+
+def cable_alpha(*, EA, k_bond):
+    """alpha = sqrt(k_bond / EA) (1/m), the inverse of the length over which the bond takes up an
+    elastic cable's load."""
+    return math.sqrt(_positive("k_bond", k_bond) / _positive("EA", EA))
+
+
+def cable_elastic_force(x, *, F0, L, EA, k_bond, far_end="free"):
+    """Axial force (tension positive) along a fully grouted elastic cable pulled at x = 0 by F0,
+    the grout an elastic spring k_bond per unit length on rigid rock (derivation above):
+
+        far_end = "free":      F(x) = F0 sinh(alpha (L - x)) / sinh(alpha L)
+        far_end = "anchored":  F(x) = F0 cosh(alpha (L - x)) / cosh(alpha L)
+
+    alpha = sqrt(k_bond / EA). Computed with exponentials of -alpha x and -alpha (L - x) so that
+    long cables (alpha L of hundreds) do not overflow.
+    """
+    F0 = _scalar("F0", F0)
+    L, EA, alpha = _cable(L, EA, k_bond)
+    x = _along(x, L, "cable")
+    sign = -1.0 if _far_end(far_end) == "free" else 1.0
+    # sinh(a(L-x)) / sinh(aL) = (e^{-a x} - e^{-a(2L-x)}) / (1 - e^{-2aL}), and cosh likewise.
+    return F0 * (np.exp(-alpha * x) + sign * np.exp(-alpha * (2.0 * L - x))) / (1.0 + sign * math.exp(-2.0 * alpha * L))
+
+
+def cable_elastic_displacement(x, *, F0, L, EA, k_bond, far_end="free"):
+    """Displacement towards the head (pull-out positive) along the elastic cable of
+    cable_elastic_force: s = -(1/EA) integral of F, with s(L) from the far end's condition:
+
+        free:      s(x) = F0 cosh(alpha (L - x)) / (EA alpha sinh(alpha L))
+        anchored:  s(x) = F0 sinh(alpha (L - x)) / (EA alpha cosh(alpha L))
+    """
+    F0 = _scalar("F0", F0)
+    L, EA, alpha = _cable(L, EA, k_bond)
+    x = _along(x, L, "cable")
+    sign = 1.0 if _far_end(far_end) == "free" else -1.0
+    return F0 / (EA * alpha) * (np.exp(-alpha * x) + sign * np.exp(-alpha * (2.0 * L - x))) \
+        / (1.0 - sign * math.exp(-2.0 * alpha * L))
+
+
+def cable_head_stiffness(*, L, EA, k_bond, far_end="free"):
+    """F0 / s(0) of the elastic cable: EA alpha tanh(alpha L) with the far end free (the issue's
+    formula), EA alpha coth(alpha L) with it anchored (derivation above)."""
+    L, EA, alpha = _cable(L, EA, k_bond)
+    t = math.tanh(alpha * L)
+    return EA * alpha * (t if _far_end(far_end) == "free" else 1.0 / t)
+
+
+# ---------------------------------------------------------------- the discrete cable
+#
+# The model the solver integrates: nodes x_i = i h, h = L / n, i = 0..n; axial springs EA / h
+# between neighbours; a bond spring at every node of stiffness k_bond h, HALF (k_bond h / 2) at the
+# two end nodes (the trapezoidal rule: each node carries the grout of the half segments beside it);
+# F0 at node 0, rigid rock. At an interior node, (EA/h)(s_{i-1} - 2 s_i + s_{i+1}) = k_bond h s_i:
+#
+#     s_{i-1} + s_{i+1} = 2 cosh(theta) s_i,    cosh(theta) = 1 + alpha^2 h^2 / 2,
+#
+# solved by cosh(theta (n - i)) and sinh(theta (n - i)). The free end node, (EA/h)(s_{n-1} - s_n) =
+# (k_bond h / 2) s_n, is s_{n-1} = cosh(theta) s_n: only the cosh remains, s_i = A cosh(theta (n - i)).
+# The head node, F0 = (EA/h)(s_0 - s_1) + (k_bond h / 2) s_0 with k_bond h / 2 = (EA/h)(cosh theta - 1),
+# gives F0 = (EA/h) A (cosh theta cosh n theta - cosh (n-1) theta) = (EA/h) A sinh theta sinh n theta:
+#
+#     s_i = F0 h cosh(theta (n - i)) / (EA sinh(theta) sinh(n theta)),
+#     F_{i+1/2} = (EA/h)(s_i - s_{i+1}) = F0 sinh(theta (n - i - 1/2)) / (cosh(theta/2) sinh(n theta)),
+#     head stiffness (EA/h) sinh(theta) tanh(n theta).
+#
+# With n - i = (L - x)/h these are functions of x, exact at the nodes (s) and at the segments'
+# midpoints (F). As h -> 0, theta / h -> alpha and they tend to the continuum with an error O(h^2).
+
+
+def _discrete_cable(L, EA, k_bond, n):
+    L, EA, alpha = _cable(L, EA, k_bond)
+    n = _count("n (number of cable segments)", n)
+    h = L / n
+    theta = math.acosh(1.0 + 0.5 * (alpha * h) ** 2)
+    return L, EA, h, theta, n
+
+
+def cable_discrete_theta(*, L, EA, k_bond, n):
+    """theta of the discrete cable, cosh(theta) = 1 + alpha^2 h^2 / 2, h = L / n: its decay per segment
+    (alpha h for fine segments)."""
+    return _discrete_cable(L, EA, k_bond, n)[3]
+
+
+def cable_discrete_displacement(x, *, F0, L, EA, k_bond, n):
+    """Nodal displacement (towards the head) of the discrete elastic cable of n segments, far end
+    free, bond springs k_bond h at the nodes and half at the two ends (derivation above):
+
+        s(x) = F0 h cosh(theta (L - x) / h) / (EA sinh(theta) sinh(n theta)),  cosh(theta) = 1 + (alpha h)^2 / 2
+
+    exact at the nodes x = i h (between them it is not the solver's linear interpolation)."""
+    F0 = _scalar("F0", F0)
+    L, EA, h, theta, n = _discrete_cable(L, EA, k_bond, n)
+    x = _along(x, L, "cable")
+    # cosh(theta m) / sinh(theta n) with m = (L - x)/h <= n, by exponentials that do not overflow.
+    m = (L - x) / h
+    ratio = (np.exp(theta * (m - n)) + np.exp(-theta * (m + n))) / (1.0 - math.exp(-2.0 * theta * n))
+    return F0 * h / (EA * math.sinh(theta)) * ratio
+
+
+def cable_discrete_force(x, *, F0, L, EA, k_bond, n):
+    """Axial force (tension positive) in the segments of the discrete elastic cable (derivation above):
+
+        F(x) = F0 sinh(theta (L - x) / h) / (cosh(theta / 2) sinh(n theta))
+
+    exact at the segments' midpoints x = (i + 1/2) h, where the solver's segment forces belong."""
+    F0 = _scalar("F0", F0)
+    L, EA, h, theta, n = _discrete_cable(L, EA, k_bond, n)
+    x = _along(x, L, "cable")
+    m = (L - x) / h
+    ratio = (np.exp(theta * (m - n)) - np.exp(-theta * (m + n))) / (1.0 - math.exp(-2.0 * theta * n))
+    return F0 * ratio / math.cosh(0.5 * theta)
+
+
+def cable_discrete_head_stiffness(*, L, EA, k_bond, n):
+    """F0 / s_0 of the discrete elastic cable: (EA / h) sinh(theta) tanh(n theta) (derivation above);
+    it tends to EA alpha tanh(alpha L) as n grows."""
+    L, EA, h, theta, n = _discrete_cable(L, EA, k_bond, n)
+    return EA / h * math.sinh(theta) * math.tanh(n * theta)
+
+
+# ================================================================ grouted cable, bond that slips
+#
+# The grout a spring-slider: the bond force per unit length is k_bond s up to s_bond (N/m), then
+# stays at s_bond (perfectly plastic). Under a monotonically growing F0 the displacement falls
+# monotonically from the head, so the bond has slipped on 0 <= x <= a and is elastic beyond. There:
+#   slipped part:  dF/dx = s_bond, F(x) = F_a + s_bond (a - x);
+#   elastic part:  the free-end cable of length L - a pulled by F_a (above), its slip starting at a:
+#                  k_bond s(a) = s_bond with s(a) = F_a coth(alpha (L - a)) / (EA alpha), so
+#                  F_a = (s_bond / alpha) tanh(alpha (L - a))   (EA alpha / k_bond = 1 / alpha).
+# Hence F0 = s_bond a + (s_bond / alpha) tanh(alpha (L - a)), whose derivative in a is
+# s_bond tanh^2(alpha (L - a)) >= 0: a grows from 0 at the first slip, F0 = (s_bond / alpha) tanh(alpha L),
+# to L at the pull-out capacity F0 = s_bond L. The head displacement is the elastic part's
+# s(a) = s_bond / k_bond plus the slipped part's stretch (1/EA) integral_0^a F dx:
+#
+#     s(0) = s_bond / k_bond + (F_a a + s_bond a^2 / 2) / EA.
+#
+# The bond law is path independent under monotone loading (no node unloads), which is what this is.
+
+
+def _slipping_cable(F0, L, EA, k_bond, s_bond):
+    F0 = _non_negative("F0", F0)
+    L, EA, alpha = _cable(L, EA, k_bond)
+    s_bond = _positive("s_bond (bond strength per unit length)", s_bond)
+    if F0 > s_bond * L:
+        raise ValueError(f"F0 = {F0}: beyond the pull-out capacity s_bond L = {s_bond * L}; the cable pulls out")
+    return F0, L, EA, alpha, s_bond
+
+
+def cable_first_slip_force(*, L, EA, k_bond, s_bond):
+    """The head force at which the bond first slips (at the head): (s_bond / alpha) tanh(alpha L)."""
+    L, EA, alpha = _cable(L, EA, k_bond)
+    return _positive("s_bond (bond strength per unit length)", s_bond) / alpha * math.tanh(alpha * L)
+
+
+def cable_pullout_capacity(*, L, s_bond):
+    """The peak pull-out force of the spring-slider bond: s_bond L (the whole length slipping)."""
+    return _positive("s_bond (bond strength per unit length)", s_bond) * _positive("L (cable length)", L)
+
+
+def cable_slip_length(*, F0, L, EA, k_bond, s_bond):
+    """The slipped length a from the head, the root of F0 = s_bond a + (s_bond / alpha) tanh(alpha (L - a))
+    (derivation above): 0 up to the first slip, L at the capacity s_bond L. Brent's method to round-off."""
+    F0, L, EA, alpha, s_bond = _slipping_cable(F0, L, EA, k_bond, s_bond)
+    if F0 <= s_bond / alpha * math.tanh(alpha * L):
+        return 0.0
+    if F0 == s_bond * L:
+        return L
+    return optimize.brentq(lambda a: s_bond * a + s_bond / alpha * math.tanh(alpha * (L - a)) - F0,
+                           0.0, L, xtol=1e-15 * L, rtol=4.0 * np.finfo(float).eps)
+
+
+def cable_slip_force(x, *, F0, L, EA, k_bond, s_bond):
+    """Axial force (tension positive) along the cable with a slipping bond, far end free (derivation
+    above): F0 - s_bond x over the slipped length a, F_a sinh(alpha (L - x)) / sinh(alpha (L - a))
+    beyond, F_a = (s_bond / alpha) tanh(alpha (L - a)). Below the first slip it is cable_elastic_force."""
+    F0, L, EA, alpha, s_bond = _slipping_cable(F0, L, EA, k_bond, s_bond)
+    x = _along(x, L, "cable")
+    a = cable_slip_length(F0=F0, L=L, EA=EA, k_bond=k_bond, s_bond=s_bond)
+    if a == 0.0:
+        return cable_elastic_force(x, F0=F0, L=L, EA=EA, k_bond=k_bond)
+    slipped = F0 - s_bond * x
+    rest = L - a
+    if rest == 0.0:
+        return slipped
+    F_a = s_bond / alpha * math.tanh(alpha * rest)
+    xe = np.clip(x - a, 0.0, rest)
+    elastic = F_a * (np.exp(-alpha * xe) - np.exp(-alpha * (2.0 * rest - xe))) / (1.0 - math.exp(-2.0 * alpha * rest))
+    return np.where(x <= a, slipped, elastic)
+
+
+def cable_slip_head_displacement(*, F0, L, EA, k_bond, s_bond):
+    """Head displacement of the cable with a slipping bond: s_bond / k_bond + (F_a a + s_bond a^2 / 2) / EA
+    once it slips (derivation above), F0 / (EA alpha tanh(alpha L)) before."""
+    F0, L, EA, alpha, s_bond = _slipping_cable(F0, L, EA, k_bond, s_bond)
+    a = cable_slip_length(F0=F0, L=L, EA=EA, k_bond=k_bond, s_bond=s_bond)
+    if a == 0.0:
+        return F0 / cable_head_stiffness(L=L, EA=EA, k_bond=k_bond)
+    F_a = s_bond / alpha * math.tanh(alpha * (L - a))
+    return s_bond / _positive("k_bond", k_bond) + (F_a * a + 0.5 * s_bond * a * a) / EA
+
+
+def cable_discrete_slip(*, F0, L, EA, k_bond, s_bond, n):
+    """The discrete cable of cable_discrete_displacement (n segments, far end free, bond springs
+    k_bond h at the nodes and half at the two ends) with each bond spring a spring-slider capped at
+    s_bond h (half at the ends), under a monotonically applied head force F0 <= s_bond L.
+
+    The nodes that slip are a run from the head (the displacement falls along the cable), so the
+    slipped count m is the one for which the linear system with nodes 0..m-1 carrying their cap and
+    nodes m..n their elastic spring gives k_bond s_i >= s_bond on the first and <= s_bond on the
+    others; m is found by trying m = 0, 1, ..., and each system is tridiagonal (solved by
+    scipy.linalg.solve_banded). Returns a dict: "x_nodes", "displacement" (towards the head),
+    "x_segments" (midpoints), "force" (segment forces, tension positive), "slipped_nodes" (m),
+    "bond_force" (per node, N).
+    """
+    F0, L, EA, alpha, s_bond = _slipping_cable(F0, L, EA, k_bond, s_bond)
+    n = _count("n (number of cable segments)", n)
+    h = L / n
+    share = np.full(n + 1, h)
+    share[[0, -1]] = 0.5 * h
+    spring, cap = k_bond * share, s_bond * share
+    axial = EA / h
+    for m in range(n + 1):
+        # Rows of (K) s = f; the slipped nodes' bond forces are loads, their springs gone.
+        bands = np.zeros((3, n + 1))
+        bands[1] = 2.0 * axial
+        bands[1, [0, -1]] = axial
+        bands[0, 1:] = -axial
+        bands[2, :-1] = -axial
+        bands[1, m:] += spring[m:]
+        f = -cap.copy()
+        f[m:] = 0.0
+        f[0] += F0
+        s = linalg.solve_banded((1, 1), bands, f)
+        slipped_ok = np.all(k_bond * s[:m] >= s_bond * (1.0 - 1e-12))
+        elastic_ok = np.all(k_bond * s[m:] <= s_bond * (1.0 + 1e-12))
+        if slipped_ok and elastic_ok:
+            bond = np.where(np.arange(n + 1) < m, cap, spring * s)
+            return {"x_nodes": np.arange(n + 1) * h, "displacement": s, "x_segments": (np.arange(n) + 0.5) * h,
+                    "force": axial * (s[:-1] - s[1:]), "slipped_nodes": m, "bond_force": bond}
+    raise ValueError(f"F0 = {F0}: no consistent slipped length found (F0 at the capacity s_bond L = {s_bond * L}?)")
