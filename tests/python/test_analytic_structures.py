@@ -7,8 +7,9 @@ the spring chain or the frame assembled here, eigenvalues of the flexibility mat
 continuum's influence functions, quadrature for equilibrium, central differences of the fields, and
 Lame's thick cylinder for the thin ring.
 
-Tolerances: a closed form against another closed form or a linear solve: 1e-12 relative (condition
-numbers stay below 1e4 here); against solve_bvp run to tol 1e-10: 1e-7; finite differences with step d:
+Tolerances: a closed form against another closed form or a linear solve of the cable chain: 1e-12
+relative (condition numbers below 1e4); against a solve of the frame stiffness, whose condition number
+grows as n^4 (6e5 at 16 elements, 2e7 at 40, 1.5e8 at 64): 1e-9; against solve_bvp run to tol 1e-10: 1e-7; finite differences with step d:
 truncation ~ d^2 f''' / 6 relative, stated at each check; a discrete model against the continuum: its
 O(h^2) error, measured and bounded.
 """
@@ -253,3 +254,223 @@ def test_cable_rejects_bad_input():
         st.cable_slip_length(F0=-1.0, L=1.0, EA=EA, k_bond=K_BOND, s_bond=1.0)
     with pytest.raises(ValueError, match="L \\(cable"):
         st.cable_elastic_force(0.0, F0=F0, L=float("nan"), EA=EA, k_bond=K_BOND)
+
+
+# ---------------------------------------------------------------- frame beams
+
+# A steel-like section: E = 2e11 Pa, I = 1e-5 m^4 (EI = 2e6 N m^2), L = 2 m, P = 10 kN, q = 5 kN/m.
+BEAM = dict(L=2.0, E=2e11, I=1e-5)
+EI = 2e6
+
+
+def cantilever_flexibility(nodes):
+    """Deflection and rotation at the nodes (w_1, theta_1, ..., w_n, theta_n) under unit point loads
+    and unit moments there, from the continuum's influence functions of a cantilever clamped at 0
+    (T&G: a load P at b deflects x <= b by P x^2 (3b - x) / 6EI and rotates it by P x (2b - x) / 2EI,
+    and beyond b the beam is straight; a moment M at b bends x <= b into M x^2 / 2EI)."""
+    n = len(nodes)
+    F = np.zeros((2 * n, 2 * n))
+    for i, a in enumerate(nodes):
+        for j, b in enumerate(nodes):
+            lo = min(a, b)
+            if a <= b:
+                F[2 * i, 2 * j] = a * a * (3 * b - a) / (6 * EI)
+                F[2 * i + 1, 2 * j] = a * (2 * b - a) / (2 * EI)
+                F[2 * i, 2 * j + 1] = a * a / (2 * EI)
+            else:
+                F[2 * i, 2 * j] = b * b * (3 * a - b) / (6 * EI)
+                F[2 * i + 1, 2 * j] = b * b / (2 * EI)
+                F[2 * i, 2 * j + 1] = b * (2 * a - b) / (2 * EI)
+            F[2 * i + 1, 2 * j + 1] = lo / EI
+    return F
+
+
+def quartic(values_at, L):
+    """The polynomial of degree 4 through nine samples of a field on [0, L] (exact for a quartic)."""
+    x = np.linspace(0.0, L, 9)
+    return np.poly1d(np.polyfit(x, values_at(x), 4))
+
+
+@REQ
+def test_cantilever_point_load_known_values():
+    # P L^3 / 3EI = 1e4 * 8 / 6e6 = 0.013333..., P L^2 / 2EI = 1e4 * 4 / 4e6 = 0.01
+    assert st.cantilever_tip_deflection(P=1e4, **BEAM) == approx(8e4 / 6e6, rel=1e-15)
+    assert st.cantilever_tip_rotation(P=1e4, **BEAM) == approx(0.01, rel=1e-15)
+    assert st.cantilever_point_load_deflection(2.0, P=1e4, **BEAM) == approx(8e4 / 6e6, rel=1e-15)
+    # at L/2: P (L/2)^2 (3L - L/2) / 6EI = 1e4 * 1 * 5 / 1.2e7 (5/16 of the tip)
+    assert st.cantilever_point_load_deflection(1.0, P=1e4, **BEAM) == approx(5e4 / 1.2e7, rel=1e-15)
+
+
+@REQ
+def test_frame_elements_reproduce_the_continuum_flexibility_exactly():
+    # The inverse of the clamped frame stiffness is the continuum's flexibility at the nodes: for
+    # any nodal loads, the nodal deflections and rotations of cubic elements are exact.
+    for n in (1, 2, 5, 16):
+        K = st.cantilever_frame_stiffness(elements=n, **BEAM)
+        nodes = np.arange(1, n + 1) * 2.0 / n
+        np.testing.assert_allclose(np.linalg.inv(K), cantilever_flexibility(nodes), rtol=1e-10, atol=1e-14)
+        f = np.zeros(2 * n)
+        f[-2] = 1e4
+        u = np.linalg.solve(K, f)
+        tip = st.cantilever_elements_tip(P=1e4, elements=n, **BEAM)
+        assert u[-2] == approx(tip["deflection"], rel=1e-9) and u[-1] == approx(tip["rotation"], rel=1e-9)
+        np.testing.assert_allclose(u[0::2], st.cantilever_point_load_deflection(nodes, P=1e4, **BEAM), rtol=1e-9)
+    # the free-free matrix has the two rigid-body modes in its null space
+    K = st.frame_bending_stiffness(elements=4, **BEAM)
+    x = np.arange(5) * 0.5
+    for mode in (np.column_stack([np.ones(5), np.zeros(5)]).ravel(), np.column_stack([x, np.ones(5)]).ravel()):
+        assert np.max(np.abs(K @ mode)) < 1e-9 * np.max(np.abs(K))
+
+
+@REQ
+def test_cantilever_uniform_load_solves_the_beam_equation():
+    q = 5e3
+    w = quartic(lambda x: st.cantilever_uniform_deflection(x, q=q, **BEAM), 2.0)
+    d = [w.deriv(k) for k in range(5)]
+    # EI w'''' = q; clamped: w = w' = 0 at 0; free: w'' = w''' = 0 at L
+    assert EI * d[4](0.0) == approx(q, rel=1e-9)
+    assert abs(d[0](0.0)) < 1e-12 * w(2.0) and abs(d[1](0.0)) < 1e-12 * d[1](2.0)
+    assert abs(d[2](2.0)) < 1e-9 * abs(d[2](0.0)) and abs(d[3](2.0)) < 1e-9 * abs(d[3](0.0))
+    # tip q L^4 / 8EI = 5e3 * 16 / 1.6e7 = 5e-3; rotation q L^3 / 6EI = 4e4 / 1.2e7
+    assert st.cantilever_uniform_deflection(2.0, q=q, **BEAM) == approx(5e-3, rel=1e-15)
+    assert st.cantilever_uniform_rotation(2.0, q=q, **BEAM) == approx(4e4 / 1.2e7, rel=1e-15)
+    x = np.array([0.3, 1.1, 1.9])
+    np.testing.assert_allclose(st.cantilever_uniform_rotation(x, q=q, **BEAM), d[1](x), rtol=1e-9)
+
+
+@REQ
+def test_cantilever_lumped_uniform_load_is_the_frame_solution():
+    q = 5e3
+    for n in (1, 2, 3, 10, 40):
+        K = st.cantilever_frame_stiffness(elements=n, **BEAM)
+        f = np.zeros(2 * n)
+        f[0::2] = q * 2.0 / n
+        f[-2] *= 0.5
+        u = np.linalg.solve(K, f)
+        tip = st.cantilever_lumped_uniform_tip(q=q, elements=n, **BEAM)
+        assert tip["deflection"] == approx(u[-2], rel=1e-9)
+        assert tip["rotation"] == approx(u[-1], rel=1e-9)
+    # n = 1 by hand: q L / 2 = 5 kN at the tip, 5e3 L^3 / 3EI = 5e3 * 8 / 6e6
+    assert st.cantilever_lumped_uniform_tip(q=q, elements=1, **BEAM)["deflection"] == approx(4e4 / 6e6, rel=1e-15)
+
+
+@REQ
+def test_simply_supported_uniform_load_solves_the_beam_equation():
+    q = 5e3
+    w = quartic(lambda x: st.simply_supported_uniform_deflection(x, q=q, **BEAM), 2.0)
+    d = [w.deriv(k) for k in range(5)]
+    scale = st.simply_supported_midspan_deflection(q=q, **BEAM)
+    assert EI * d[4](0.0) == approx(q, rel=1e-9)
+    for end in (0.0, 2.0):
+        assert abs(d[0](end)) < 1e-12 * scale and abs(EI * d[2](end)) < 1e-9 * q
+    # 5 q L^4 / 384EI = 5 * 5e3 * 16 / 7.68e8; M = -EI w'' = q x (L - x) / 2, q L^2 / 8 = 2500 N m at midspan
+    assert scale == approx(4e5 / 7.68e8, rel=1e-15)
+    assert st.simply_supported_uniform_deflection(1.0, q=q, **BEAM) == approx(scale, rel=1e-15)
+    x = np.array([0.0, 0.4, 1.0, 1.7])
+    np.testing.assert_allclose(st.simply_supported_uniform_moment(x, q=q, L=2.0), -EI * d[2](x), rtol=1e-9, atol=1e-9 * q)
+    assert st.simply_supported_uniform_moment(1.0, q=q, L=2.0) == 2500.0
+
+
+@REQ
+def test_simply_supported_lumped_load_is_the_frame_solution():
+    q = 5e3
+    for n in (2, 4, 6, 20, 64):
+        K = st.frame_bending_stiffness(elements=n, **BEAM)
+        free = [i for i in range(2 * n + 2) if i not in (0, 2 * n)]   # w_0 = w_n = 0
+        f = np.zeros(2 * n + 2)
+        f[0::2] = q * 2.0 / n
+        u = np.linalg.solve(K[np.ix_(free, free)], f[free])
+        midspan = u[free.index(n)]
+        assert st.simply_supported_lumped_midspan_deflection(q=q, elements=n, **BEAM) == approx(midspan, rel=1e-9)
+    # n = 2 by hand: q L / 2 at midspan, P L^3 / 48EI = 5e3 * 8 / 9.6e7
+    assert st.simply_supported_lumped_midspan_deflection(q=q, elements=2, **BEAM) == approx(4e4 / 9.6e7, rel=1e-15)
+
+
+# ---------------------------------------------------------------- cantilever frequencies
+
+# Blevins, Formulas for Natural Frequency and Mode Shape, table 8-1, clamped-free
+BETA_L = [1.87510407, 4.69409113, 7.85475744, 10.99554073]
+FREQ = dict(E=2e11, I=1e-5, rho=7800.0, A=0.01, L=2.0)
+F_SCALE = math.sqrt(2e6 / (78.0 * 16.0)) / (2.0 * math.pi)     # sqrt(EI / (rho A L^4)) / 2 pi
+
+
+@REQ
+def test_cantilever_beta_L_are_the_published_roots():
+    roots = st.cantilever_beta_L(modes=8)
+    np.testing.assert_allclose(roots[:4], BETA_L, rtol=1e-8)
+    # cos x + 1 / cosh x vanishes to the rounding of x itself (|d/dx| ~ 1): a few eps x
+    assert np.max(np.abs(1.0 + np.cos(roots) * np.cosh(roots)) / np.cosh(roots) / roots) < 4 * np.finfo(float).eps
+    # beyond: (2n - 1) pi / 2 + delta, delta = (-1)^(n+1) 2 exp(-(2n - 1) pi / 2) to O(delta^2)
+    n = np.arange(5, 9)
+    x0 = (2 * n - 1) * math.pi / 2
+    np.testing.assert_allclose(roots[4:] - x0, (-1.0) ** (n + 1) * 2.0 * np.exp(-x0), rtol=1e-4)
+
+
+@REQ
+def test_cantilever_frequencies_known_values():
+    f = st.cantilever_frequencies(modes=4, **FREQ)
+    np.testing.assert_allclose(f, np.array(BETA_L) ** 2 * F_SCALE, rtol=2e-8)
+    # EI = 2e6, rho A = 78 kg/m, L = 2: f1 = 1.8751^2 / 2pi * sqrt(2e6 / 1248) = 0.559598 * 40.0320 = 22.402 Hz
+    assert f[0] == approx(22.402, rel=1e-4)
+
+
+@REQ
+@pytest.mark.parametrize("ratio", [0.0, 1.0 / 12.0, 0.5])
+def test_cantilever_lumped_frequencies_from_the_flexibility(ratio):
+    # Another route to the same discrete model: omega^-2 are the eigenvalues of F M, F the
+    # continuum's nodal flexibility (exact for cubic elements). With no rotary inertia only the
+    # translational part of F (loads alone, rotations free) enters.
+    for n in (1, 2, 5, 12):
+        h = 2.0 / n
+        nodes = np.arange(1, n + 1) * h
+        m = np.full(n, 78.0 * h)
+        m[-1] *= 0.5
+        F = cantilever_flexibility(nodes)
+        if ratio == 0.0:
+            lam = np.linalg.eigvals(F[0::2, 0::2] @ np.diag(m))
+        else:
+            lam = np.linalg.eigvals(F @ np.diag(np.column_stack([m, ratio * m * h * h]).ravel()))
+        expected = np.sort(1.0 / np.sqrt(np.real(lam)) / (2.0 * math.pi))[:min(n, 3)]
+        found = st.cantilever_lumped_frequencies(elements=n, modes=min(n, 3), rotary_inertia_ratio=ratio, **FREQ)
+        np.testing.assert_allclose(found, expected, rtol=1e-10)
+    # one element by hand: the tip mass rho A L / 2 on the tip stiffness 3EI / L^3:
+    # omega^2 = 6 EI / (rho A L^4), f = sqrt(6) F_SCALE
+    if ratio == 0.0:
+        assert st.cantilever_lumped_frequencies(elements=1, **FREQ)[0] == approx(math.sqrt(6.0) * F_SCALE, rel=1e-13)
+
+
+@REQ
+def test_cantilever_lumped_frequencies_converge_at_second_order():
+    exact = st.cantilever_frequencies(**FREQ)[0]
+    errors = np.array([st.cantilever_lumped_frequencies(elements=n, **FREQ)[0] / exact - 1.0 for n in (8, 16, 32, 64)])
+    assert np.all(errors < 0.0)
+    np.testing.assert_allclose(np.log2(errors[:-1] / errors[1:]), 2.0, atol=0.01)
+    np.testing.assert_allclose(errors * np.array([8, 16, 32, 64]) ** 2, -0.459, atol=0.004)
+    # Richardson from 32 and 64 elements: the continuum to O(n^-4), 1e-7 here
+    f32, f64 = (st.cantilever_lumped_frequencies(elements=n, **FREQ)[0] for n in (32, 64))
+    assert f64 + (f64 - f32) / 3.0 == approx(exact, rel=2e-7)
+    # a rotary inertia lowers the frequency, less and less as the elements shrink
+    for n in (4, 16):
+        with_j = st.cantilever_lumped_frequencies(elements=n, rotary_inertia_ratio=1 / 12, **FREQ)[0]
+        assert with_j < st.cantilever_lumped_frequencies(elements=n, **FREQ)[0]
+    assert st.cantilever_lumped_frequencies(elements=64, rotary_inertia_ratio=1 / 12, **FREQ)[0] == approx(exact, rel=3e-4)
+
+
+@REQ
+def test_beams_reject_bad_input():
+    with pytest.raises(ValueError, match="I \\(second"):
+        st.cantilever_tip_deflection(P=1.0, L=1.0, E=1.0, I=0.0)
+    with pytest.raises(ValueError, match="x = "):
+        st.cantilever_uniform_deflection(-0.1, q=1.0, L=1.0, E=1.0, I=1.0)
+    with pytest.raises(ValueError, match="elements"):
+        st.cantilever_elements_tip(P=1.0, L=1.0, E=1.0, I=1.0, elements=0)
+    with pytest.raises(ValueError, match="even"):
+        st.simply_supported_lumped_midspan_deflection(q=1.0, L=1.0, E=1.0, I=1.0, elements=3)
+    with pytest.raises(ValueError, match="modes"):
+        st.cantilever_lumped_frequencies(elements=2, modes=3, **FREQ)
+    with pytest.raises(ValueError, match="rotary_inertia_ratio"):
+        st.cantilever_lumped_frequencies(elements=2, rotary_inertia_ratio=-1.0, **FREQ)
+    with pytest.raises(ValueError, match="rho"):
+        st.cantilever_frequencies(E=1.0, I=1.0, rho=0.0, A=1.0, L=1.0)
+    with pytest.raises(ValueError, match="P"):
+        st.cantilever_tip_deflection(P="heavy", L=1.0, E=1.0, I=1.0)
