@@ -474,3 +474,115 @@ def test_beams_reject_bad_input():
         st.cantilever_frequencies(E=1.0, I=1.0, rho=0.0, A=1.0, L=1.0)
     with pytest.raises(ValueError, match="P"):
         st.cantilever_tip_deflection(P="heavy", L=1.0, E=1.0, I=1.0)
+
+
+# ---------------------------------------------------------------- Winkler foundation
+
+# EI = 2e6 N m^2, k = 1.28e8 N/m/m: lambda^4 = k / 4EI = 16, lambda = 2 /m. P = 100 kN.
+WINKLER = dict(k=1.28e8, E=2e11, I=1e-5)
+LAM, P_W = 2.0, 1e5
+
+
+def winkler_half_beam_bvp(c):
+    """EI w'''' + k w = 0 on 0 <= x <= c, w'(0) = 0, EI w'''(0) = P/2, w''(c) = w'''(c) = 0, by solve_bvp."""
+    x = np.linspace(0.0, c, 401)
+
+    def ode(_, y):
+        return np.vstack([y[1], y[2], y[3], -WINKLER["k"] / EI * y[0]])
+
+    def bc(ya, yb):
+        return np.array([ya[1], EI * ya[3] - 0.5 * P_W, yb[2], yb[3]])
+
+    sol = integrate.solve_bvp(ode, bc, x, np.zeros((4, x.size)), tol=1e-10, max_nodes=200000)
+    assert sol.success
+    return sol
+
+
+@REQ
+def test_winkler_known_values():
+    assert st.winkler_lambda(**WINKLER) == approx(LAM, rel=1e-15)
+    # w(0) = P lambda / 2k = 1e5 * 2 / 2.56e8, M(0) = P / 4 lambda = 12500 N m
+    assert st.winkler_deflection(0.0, P=P_W, **WINKLER) == approx(2e5 / 2.56e8, rel=1e-15)
+    assert st.winkler_moment(0.0, P=P_W, **WINKLER) == approx(12500.0, rel=1e-15)
+    # zeros: deflection at lambda x = 3 pi / 4, moment at pi / 4; both even in x
+    w0 = st.winkler_deflection(0.0, P=P_W, **WINKLER)
+    assert abs(st.winkler_deflection(3 * math.pi / 8, P=P_W, **WINKLER)) < 1e-15 * w0
+    assert abs(st.winkler_moment(math.pi / 8, P=P_W, **WINKLER)) < 1e-11
+    x = np.array([0.3, 1.2, 2.5])
+    np.testing.assert_array_equal(st.winkler_deflection(-x, P=P_W, **WINKLER), st.winkler_deflection(x, P=P_W, **WINKLER))
+    np.testing.assert_array_equal(st.winkler_moment(-x, P=P_W, **WINKLER), st.winkler_moment(x, P=P_W, **WINKLER))
+
+
+@REQ
+def test_winkler_infinite_beam_solves_the_equation_and_balances_the_load():
+    # EI w'''' = -k w away from the load: fourth central differences at steps d and d/2 (d = 0.05 /
+    # lambda) extrapolated (Richardson), truncation O((lambda d)^4) ~ 1e-6, rounding eps w / d^4 ~ 1e-9
+    # of k w; M = -EI w'' by a central second difference with d = 1e-3 / lambda: truncation ~ 1e-6.
+    def w(y):
+        return st.winkler_deflection(y, P=P_W, **WINKLER)
+
+    def fourth(y, d):
+        return (w(y - 2 * d) - 4 * w(y - d) + 6 * w(y) - 4 * w(y + d) + w(y + 2 * d)) / d ** 4
+
+    x = np.array([0.2, 0.7, 1.3, 2.1])
+    d = 0.05 / LAM
+    extrapolated = (4.0 * fourth(x, 0.5 * d) - fourth(x, d)) / 3.0
+    np.testing.assert_allclose(EI * extrapolated, -WINKLER["k"] * w(x), rtol=1e-5, atol=1e-6 * WINKLER["k"] * w(0.0))
+    d = 1e-3 / LAM
+    second = (w(x - d) - 2 * w(x) + w(x + d)) / d ** 2
+    np.testing.assert_allclose(st.winkler_moment(x, P=P_W, **WINKLER), -EI * second, rtol=1e-5, atol=1e-6 * 12500.0)
+    # the foundation carries the whole load: 2 integral_0^inf k w dx = P
+    half, _ = integrate.quad(lambda y: float(w(y)), 0.0, np.inf, epsabs=0.0, epsrel=1e-12, limit=200)
+    assert 2.0 * WINKLER["k"] * half == approx(P_W, rel=1e-10)
+
+
+@REQ
+def test_winkler_finite_beam_against_solve_bvp_and_limits():
+    for lam_L in (1.0, 4.0, 9.0):
+        c = 0.5 * lam_L / LAM
+        sol = winkler_half_beam_bvp(c)
+        x = np.linspace(0.0, c, 7)
+        beam = st.winkler_finite_beam(x, P=P_W, L=2 * c, **WINKLER)
+        scale = st.winkler_deflection(0.0, P=P_W, **WINKLER)
+        np.testing.assert_allclose(beam["deflection"], sol.sol(x)[0], rtol=1e-7, atol=1e-8 * scale)
+        np.testing.assert_allclose(beam["moment"], -EI * sol.sol(x)[2], rtol=1e-6, atol=1e-7 * 12500.0)
+        np.testing.assert_array_equal(st.winkler_finite_beam(-x, P=P_W, L=2 * c, **WINKLER)["deflection"], beam["deflection"])
+    # long (lambda L = 80): the infinite beam to round-off, no overflow
+    x = np.array([0.0, 0.4, 1.5, 5.0])
+    long = st.winkler_finite_beam(x, P=P_W, L=40.0, **WINKLER)
+    np.testing.assert_allclose(long["deflection"], st.winkler_deflection(x, P=P_W, **WINKLER), rtol=1e-12, atol=1e-20)
+    np.testing.assert_allclose(long["moment"], st.winkler_moment(x, P=P_W, **WINKLER), rtol=1e-11, atol=1e-10)
+    # short (lambda L = 0.01): a rigid beam on springs, w = P / (k L), to (lambda L)^4 / ... ~ 1e-9
+    short = st.winkler_finite_beam(np.array([0.0, 0.0025]), P=P_W, L=0.005, **WINKLER)["deflection"]
+    np.testing.assert_allclose(short, P_W / (WINKLER["k"] * 0.005), rtol=1e-8)
+
+
+@REQ
+def test_winkler_length_for_accuracy():
+    unit = dict(P=1.0, k=4.0, E=1.0, I=1.0)   # lambda = 1
+    for measure, function in (("deflection", st.winkler_deflection), ("moment", st.winkler_moment)):
+        lam_L = st.winkler_length_for_accuracy(measure=measure)
+        assert 7.7 < lam_L < 7.75
+        infinite = float(function(0.0, **unit))
+
+        def error(v):
+            return abs(float(st.winkler_finite_beam(0.0, L=v, **unit)[measure]) / infinite - 1.0)
+
+        assert error(lam_L) == approx(1e-3, rel=1e-8)
+        assert max(error(v) for v in np.linspace(lam_L + 1e-6, 20.0, 400)) < 1e-3
+        assert max(error(v) for v in np.linspace(lam_L - 1.0, lam_L - 1e-6, 100)) > 1e-3
+    assert st.winkler_length_for_accuracy(tolerance=1e-2) < st.winkler_length_for_accuracy()
+    with pytest.raises(ValueError, match="measure"):
+        st.winkler_length_for_accuracy(measure="shear")
+    with pytest.raises(ValueError, match="tolerance"):
+        st.winkler_length_for_accuracy(tolerance=2.0)
+
+
+@REQ
+def test_winkler_rejects_bad_input():
+    with pytest.raises(ValueError, match="k \\(foundation"):
+        st.winkler_deflection(0.0, P=1.0, k=0.0, E=1.0, I=1.0)
+    with pytest.raises(ValueError, match="x = "):
+        st.winkler_finite_beam(0.6, P=1.0, k=1.0, E=1.0, I=1.0, L=1.0)
+    with pytest.raises(ValueError, match="L \\(beam"):
+        st.winkler_finite_beam(0.0, P=1.0, k=1.0, E=1.0, I=1.0, L=-1.0)
