@@ -586,3 +586,209 @@ def test_winkler_rejects_bad_input():
         st.winkler_finite_beam(0.6, P=1.0, k=1.0, E=1.0, I=1.0, L=1.0)
     with pytest.raises(ValueError, match="L \\(beam"):
         st.winkler_finite_beam(0.0, P=1.0, k=1.0, E=1.0, I=1.0, L=-1.0)
+
+
+# ---------------------------------------------------------------- bolt across a joint
+
+
+def joint_limit_shear(*, N0, P, bolt_direction, phi):
+    """The shear force that makes the upper block slide along +s on a joint (normal +n into the upper
+    block), limit equilibrium with vectors: the block carries a normal load N0 onto the joint, the bolt
+    pulls it by P along bolt_direction; Coulomb: T = (compression on the joint) tan phi + the bolt's
+    pull against +s."""
+    s, n = np.array([1.0, 0.0]), np.array([0.0, 1.0])
+    pull = P * np.asarray(bolt_direction) / np.linalg.norm(bolt_direction)
+    compression = N0 - pull @ n
+    return compression * math.tan(phi) - pull @ s
+
+
+@REQ
+def test_bolt_joint_shear_increase_by_vector_equilibrium():
+    phi = math.radians(30.0)
+    for alpha_deg in (0.0, 20.0, 30.0, 45.0, 72.0, 90.0):
+        a = math.radians(alpha_deg)
+        # the bolt anchored below the joint pulls the upper block down and back (-s, -n): the shear
+        # along +s stretches it
+        bolted = joint_limit_shear(N0=1e5, P=5e4, bolt_direction=[-math.cos(a), -math.sin(a)], phi=phi)
+        plain = joint_limit_shear(N0=1e5, P=0.0, bolt_direction=[1.0, 0.0], phi=phi)
+        assert st.bolt_joint_shear_increase(P=5e4, alpha_deg=alpha_deg, phi_deg=30.0) \
+            == pytest.approx(bolted - plain, rel=1e-13, abs=1e-9)
+    # known values: normal bolt P tan 30 = 0.5773502692 P; along the joint P; largest P / cos phi at alpha = phi
+    assert st.bolt_joint_shear_increase(P=1.0, alpha_deg=90.0, phi_deg=30.0) == approx(0.5773502692, rel=1e-9)
+    assert st.bolt_joint_shear_increase(P=1.0, alpha_deg=0.0, phi_deg=30.0) == 1.0
+    angles = np.linspace(0.0, 90.0, 9001)
+    values = [st.bolt_joint_shear_increase(P=1.0, alpha_deg=v, phi_deg=30.0) for v in angles]
+    assert angles[int(np.argmax(values))] == pytest.approx(30.0, abs=0.01)
+    assert max(values) == approx(1.0 / math.cos(phi), rel=1e-12)
+
+
+@REQ
+def test_reinforcement_shear_limit_known_values():
+    # F_s = pi d^2 sigma_b / 4 = pi * 6.25e-4 * 4e8 / 4 = 196349.54 N for a 25 mm bar at 400 MPa
+    F_s = st.reinforcement_capacity(d=0.025, sigma_b=4e8)
+    assert F_s == approx(196349.5408, rel=1e-9)
+    bar = dict(d=0.025, sigma_b=4e8)
+    assert st.reinforcement_shear_limit(theta_deg=0.0, shear_increment=1e-4, **bar) == approx(F_s, rel=1e-15)
+    assert st.reinforcement_shear_limit(theta_deg=90.0, shear_increment=1e-4, **bar) == approx(0.5 * F_s, rel=1e-15)
+    assert st.reinforcement_shear_limit(theta_deg=0.0, shear_increment=-1e-4, **bar) == 0.0
+    assert st.reinforcement_shear_limit(theta_deg=60.0, shear_increment=1e-4, **bar) == approx(0.75 * F_s, rel=1e-15)
+    # the sign of du_s is carried onto |cos theta0|: theta0 = 120 degrees, du_s > 0 is again 0.75 F_s
+    assert st.reinforcement_shear_limit(theta_deg=120.0, shear_increment=1e-4, **bar) == approx(0.75 * F_s, rel=1e-15)
+    assert st.reinforcement_shear_limit(theta_deg=120.0, shear_increment=-1e-4, **bar) == approx(0.25 * F_s, rel=1e-14)
+    for theta in (10.0, 45.0, 100.0, 170.0):
+        both = sum(st.reinforcement_shear_limit(theta_deg=theta, shear_increment=du, **bar) for du in (2.0, -3.0))
+        assert both == approx(F_s, rel=1e-15)
+    # Bjurstrom 1.4-39: 0.67 * 6.25e-4 * sqrt(4e8 * 1e8) = 0.67 * 6.25e-4 * 2e8 = 83750 N
+    assert st.bjurstrom_shear_limit(d=0.025, sigma_b=4e8, sigma_c=1e8) == approx(83750.0, rel=1e-14)
+
+
+@REQ
+def test_bolts_reject_bad_input():
+    with pytest.raises(ValueError, match="alpha_deg"):
+        st.bolt_joint_shear_increase(P=1.0, alpha_deg=95.0, phi_deg=30.0)
+    with pytest.raises(ValueError, match="phi_deg"):
+        st.bolt_joint_shear_increase(P=1.0, alpha_deg=45.0, phi_deg=90.0)
+    with pytest.raises(ValueError, match="P \\(bolt"):
+        st.bolt_joint_shear_increase(P=-1.0, alpha_deg=45.0, phi_deg=30.0)
+    with pytest.raises(ValueError, match="shear_increment"):
+        st.reinforcement_shear_limit(d=0.025, sigma_b=4e8, theta_deg=45.0, shear_increment=0.0)
+    with pytest.raises(ValueError, match="d \\(bar"):
+        st.reinforcement_capacity(d=0.0, sigma_b=4e8)
+
+
+# ---------------------------------------------------------------- lining in an elastic medium
+
+# A 0.3 m concrete lining (E_l = 30 GPa, nu_l = 0.2) of radius 3 m in rock of E_m = 5 GPa, nu_m = 0.3,
+# p0 = 10 MPa. C = 5e9 * 3 * 0.96 / (30e9 * 0.3 * 0.91) = 14.4 / 8.19 = 1.758241758.
+LINING = dict(R=3.0, t=0.3, E_l=30e9, nu_l=0.2, E_m=5e9, nu_m=0.3)
+
+
+def thick_lining_pressure(*, R, t, E_l, nu_l, E_m, nu_m, p0, released_fraction):
+    """The contact pressure of a thick lining (Lame cylinder R - t <= r <= R, free inside) bonded in a
+    hole of radius R, from compatibility at r = R, each side by elastic.lame_cylinder: the lining's
+    inward displacement under p equals the hole's further inward displacement as its wall pressure
+    drops from (1 - lam_d) p0 to p. Solved in closed form since both are linear in p."""
+    def lining_in(p):
+        return -elastic.lame_cylinder(r=R, a=R - t, b=R, p_i=0.0, p_o=p, E=E_l, nu=nu_l)[3]
+
+    def hole_in(p):   # the change of the wall's pressure from (1 - lam_d) p0 to p
+        return -elastic.lame_cylinder(r=R, a=R, b=np.inf, p_i=p - (1.0 - released_fraction) * p0, p_o=0.0,
+                                      E=E_m, nu=nu_m)[3]
+
+    # lining_in(p) = c1 p, hole_in(p) = c2 ((1 - lam_d) p0 - p)
+    c1, c2 = lining_in(1.0), -hole_in((1.0 - released_fraction) * p0 + 1.0)
+    return c2 * (1.0 - released_fraction) * p0 / (c1 + c2)
+
+
+@REQ
+def test_lining_ring_known_values():
+    assert st.compressibility_ratio(**LINING) == approx(14.4 / 8.19, rel=1e-14)
+    ring = st.lining_ring(p0=1e7, **LINING)
+    # p = p0 / (1 + C (1 - nu_m)) = 1e7 / (1 + 0.7 * 14.4 / 8.19) = 1e7 * 8.19 / 18.27
+    assert ring["support_pressure"] == approx(1e7 * 8.19 / 18.27, rel=1e-14)
+    assert ring["thrust"] == approx(3.0 * 1e7 * 8.19 / 18.27, rel=1e-14)
+    assert ring["hoop_stress"] == approx(10.0 * 1e7 * 8.19 / 18.27, rel=1e-14)
+    # ring: u = p R^2 (1 - nu_l^2) / (E_l t) = p * 9 * 0.96 / 9e9; installed at once, the wall's is the ring's
+    assert ring["lining_displacement"] == approx(ring["support_pressure"] * 8.64 / 9e9, rel=1e-14)
+    assert ring["wall_displacement"] == ring["lining_displacement"]
+    # the hole's side of the same displacement: (p0 - p) R (1 + nu_m) / E_m
+    assert ring["wall_displacement"] == approx((1e7 - ring["support_pressure"]) * 3.0 * 1.3 / 5e9, rel=1e-13)
+
+
+@REQ
+def test_lining_ring_installation_and_limits():
+    late = st.lining_ring(p0=1e7, released_fraction=0.4, **LINING)
+    early = st.lining_ring(p0=1e7, **LINING)
+    assert late["support_pressure"] == approx(0.6 * early["support_pressure"], rel=1e-14)
+    # the wall moved 0.4 p0 R (1 + nu_m) / E_m = 4e6 * 3.9 / 5e9 before the lining, then with it
+    assert late["wall_displacement"] - late["lining_displacement"] == approx(4e6 * 3.9 / 5e9, rel=1e-14)
+    assert late["wall_displacement"] == approx((1e7 - late["support_pressure"]) * 3.9 / 5e9, rel=1e-13)
+    assert st.lining_ring(p0=1e7, released_fraction=1.0, **LINING)["support_pressure"] == 0.0
+    # a stiff lining takes all that is left, a soft one nothing
+    stiff = st.lining_ring(p0=1e7, released_fraction=0.4, **dict(LINING, E_l=1e20))
+    assert stiff["support_pressure"] == approx(6e6, rel=1e-9)
+    soft = st.lining_ring(p0=1e7, **dict(LINING, E_l=1e3))
+    assert soft["support_pressure"] < 1e-5 * 1e7
+
+
+@REQ
+def test_lining_ring_is_the_thin_limit_of_the_thick_cylinder():
+    # The thin ring differs from Lame's thick lining (outer radius R) by O(t / R), less than 2t/3R
+    # here: the relative difference halves with t.
+    differences = []
+    for t in (0.06, 0.03, 0.015, 0.0075):
+        for lam_d in (0.0, 0.5):
+            params = dict(LINING, t=t)
+            thick = thick_lining_pressure(p0=1e7, released_fraction=lam_d, **params)
+            thin = st.lining_ring(p0=1e7, released_fraction=lam_d, **params)["support_pressure"]
+            assert thin == approx(thick, rel=2.0 * t / 3.0)
+        differences.append(abs(thin / thick - 1.0))
+    # first order: the ratio of successive differences rises towards 2 (1.85, 1.92, 1.96)
+    ratios = np.array(differences[:-1]) / np.array(differences[1:])
+    assert np.all((ratios > 1.8) & (ratios < 2.0)) and np.all(np.diff(ratios) > 0.0)
+
+
+@REQ
+def test_lining_rejects_bad_input():
+    with pytest.raises(ValueError, match="released_fraction"):
+        st.lining_ring(p0=1e7, released_fraction=1.5, **LINING)
+    with pytest.raises(ValueError, match="nu_m"):
+        st.lining_ring(p0=1e7, **dict(LINING, nu_m=0.5))
+    with pytest.raises(ValueError, match="t = "):
+        st.lining_ring(p0=1e7, **dict(LINING, t=3.0))
+    with pytest.raises(ValueError, match="p0"):
+        st.lining_ring(p0=-1.0, **LINING)
+
+
+# ---------------------------------------------------------------- roof wedge held by cables
+
+
+def wedge_vertical_residual(*, W, T, N, alpha, phi):
+    """Sum of the vertical forces on the symmetric wedge at limit (friction fully mobilised against
+    falling), from the force vectors on its right face and the mirror image on its left."""
+    outward = np.array([math.cos(alpha), math.sin(alpha)])    # the right face's outward normal (apex up)
+    upward_along = np.array([-math.sin(alpha), math.cos(alpha)])
+    right = -N * outward + N * math.tan(phi) * upward_along
+    return 2.0 * right[1] + T - W
+
+
+@REQ
+def test_wedge_support_force_by_vector_equilibrium():
+    assert st.wedge_support_force(W=2e5, half_apex_angle_deg=30.0, phi_deg=35.0) == 2e5   # dead weight
+    for alpha_deg, phi_deg, N in ((30.0, 35.0, 1e5), (20.0, 40.0, 3e5), (45.0, 30.0, 1e5)):
+        T = st.wedge_support_force(W=2e5, half_apex_angle_deg=alpha_deg, phi_deg=phi_deg, normal_force=N)
+        residual = wedge_vertical_residual(W=2e5, T=T, N=N, alpha=math.radians(alpha_deg), phi=math.radians(phi_deg))
+        assert abs(residual) < 1e-10 * 2e5
+        # friction helps only when phi > alpha
+        assert (T < 2e5) == (phi_deg > alpha_deg)
+    # weight: unit weight 26 kN/m^3, span 4 m, alpha = 45 degrees: area 4 * 2 / 2 = 4 m^2, 104 kN/m
+    assert st.wedge_weight(unit_weight=2.6e4, span=4.0, half_apex_angle_deg=45.0) == approx(1.04e5, rel=1e-14)
+
+
+@REQ
+def test_wedge_cable_forces_balance_the_wedge():
+    equal = st.wedge_cable_forces(total=1.2e5, positions=[-1.5, -0.5, 0.5, 1.5])
+    np.testing.assert_allclose(equal, 3e4, rtol=1e-14)
+    x, k = np.array([-1.0, 0.2, 1.4]), np.array([1.0, 2.0, 0.5])
+    F = st.wedge_cable_forces(total=1e5, positions=x, stiffnesses=k, centroid=0.1)
+    assert F.sum() == approx(1e5, rel=1e-14)
+    assert abs(F @ (x - 0.1)) < 1e-10 * 1e5
+    # a rigid motion: the cable extensions F / k lie on a straight line in x
+    slopes = np.diff(F / k) / np.diff(x)
+    assert slopes[0] == approx(slopes[1], rel=1e-12)
+    # two cables at -a and 2a about the centroid: the lever rule, 2/3 and 1/3
+    np.testing.assert_allclose(st.wedge_cable_forces(total=3.0, positions=[-1.0, 2.0]), [2.0, 1.0], rtol=1e-14)
+    np.testing.assert_allclose(st.wedge_cable_forces(total=3.0, positions=[0.0]), [3.0], rtol=0)
+    # cables all at the centroid: no moment, the wedge translates and they share by stiffness
+    np.testing.assert_allclose(st.wedge_cable_forces(total=3.0, positions=[0.1, 0.1], stiffnesses=[1.0, 3.0],
+                                                     centroid=0.1), [0.75, 2.25], rtol=1e-15)
+    with pytest.raises(ValueError, match="positions"):
+        st.wedge_cable_forces(total=3.0, positions=[1.0])
+    with pytest.raises(ValueError, match="positions"):
+        st.wedge_cable_forces(total=3.0, positions=[1.0, 1.0])
+    with pytest.raises(ValueError, match="stiffnesses"):
+        st.wedge_cable_forces(total=3.0, positions=[1.0, -1.0], stiffnesses=[1.0])
+    with pytest.raises(ValueError, match="half_apex_angle_deg"):
+        st.wedge_support_force(W=1.0, half_apex_angle_deg=90.0, phi_deg=30.0)
+    with pytest.raises(ValueError, match="normal_force"):
+        st.wedge_support_force(W=1.0, half_apex_angle_deg=30.0, phi_deg=30.0, normal_force=-1.0)

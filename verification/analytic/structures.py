@@ -701,3 +701,197 @@ def winkler_length_for_accuracy(*, tolerance=1e-3, measure="deflection"):
     if last == len(grid) - 1:
         raise ValueError(f"tolerance = {tolerance}: not reached by lambda L = 60")
     return optimize.brentq(excess, grid[last], grid[last + 1], xtol=1e-12)
+
+
+# ================================================================ a bolt across a joint
+#
+# Bjurstrom (1974): a bolt carrying an axial tension P across a joint of friction angle phi raises the
+# joint's shear resistance by
+#
+#     dT = P (cos alpha + sin alpha tan phi),
+#
+# alpha the angle between the bolt's axis and the JOINT PLANE (alpha = 90 degrees: the bolt normal to
+# the joint), the bolt leaning so that the shear stretches it, i.e. its tension's component along the
+# joint opposes the shear. Derivation (the limit equilibrium of the upper block): the bolt pulls it
+# with P cos alpha back along the joint and P sin alpha onto the joint; the latter adds P sin alpha
+# tan phi to the friction. Written with the angle theta = 90 - alpha from the joint's NORMAL (the
+# other convention in the literature) it is P (sin theta + cos theta tan phi). Largest, P / cos phi, at
+# alpha = phi; a bolt normal to the joint only clamps it (P tan phi).
+#
+# The reference's shear limit of local reinforcement (NUREG/CR-5429 1.4-40), with F_s the bar's
+# tensile capacity pi d^2 sigma_b / 4:
+#
+#     F_max = F_s [1 + sign(cos(theta0) du_s) cos(theta0)] / 2,
+#
+# theta0 the angle of the reinforcement to the discontinuity (Fig. 1.4-12, not legible in the scanned
+# text), du_s the shear displacement increment; "sign(cos theta0 du_s) assigns the sign of du_s to
+# cos theta0" (the text), Fortran's SIGN(cos theta0, du_s) = |cos theta0| sign(du_s). Both readings
+# are the same number: sign(cos theta0 du_s) cos theta0 = |cos theta0| sign(du_s). F_max runs from F_s
+# (theta0 = 0, du_s > 0) through F_s / 2 (theta0 = 90 degrees) to 0 (theta0 = 0, du_s < 0). The text
+# also quotes Bjurstrom's empirical limit for a bar normal to a joint in granite, 1.4-39:
+# 0.67 d^2 sqrt(sigma_b sigma_c).
+
+
+def bolt_joint_shear_increase(*, P, alpha_deg, phi_deg):
+    """Increase of a joint's shear resistance from a bolt of axial tension P (N) crossing it at
+    alpha_deg to the joint plane, leaning against the shear, on a joint of friction angle phi_deg:
+    P (cos alpha + sin alpha tan phi) (Bjurstrom 1974; derivation and conventions above)."""
+    P = _non_negative("P (bolt tension)", P)
+    alpha = _angle("alpha_deg", alpha_deg, 0.0, 90.0)
+    phi = _angle("phi_deg", phi_deg, 0.0, 89.999)
+    return P * (math.cos(alpha) + math.sin(alpha) * math.tan(phi))
+
+
+def reinforcement_capacity(*, d, sigma_b):
+    """F_s = pi d^2 sigma_b / 4, the bar's tensile capacity (1.4-40): d the bar's diameter (m),
+    sigma_b its yield strength (Pa)."""
+    return math.pi * _positive("d (bar diameter)", d) ** 2 * _positive("sigma_b (bar yield strength)", sigma_b) / 4.0
+
+
+def reinforcement_shear_limit(*, d, sigma_b, theta_deg, shear_increment):
+    """The reference's orientation-dependent shear limit of local reinforcement (1.4-40, notes above):
+    F_s [1 + sign(cos theta0 du_s) cos theta0] / 2 = F_s (1 + sign(du_s) |cos theta0|) / 2, theta0 =
+    theta_deg in [0, 180], du_s = shear_increment (any non-zero number; only its sign counts, and at
+    du_s = 0 the limit is not defined by the text: a ValueError)."""
+    F_s = reinforcement_capacity(d=d, sigma_b=sigma_b)
+    theta = _angle("theta_deg", theta_deg, 0.0, 180.0)
+    du = _scalar("shear_increment", shear_increment)
+    if du == 0.0:
+        raise ValueError("shear_increment = 0: the limit depends on the direction of shear; give its sign")
+    return F_s * (1.0 + math.copysign(1.0, math.cos(theta) * du) * math.cos(theta)) / 2.0
+
+
+def bjurstrom_shear_limit(*, d, sigma_b, sigma_c):
+    """Bjurstrom's empirical shear limit of a bar normal to a joint, 0.67 d^2 sqrt(sigma_b sigma_c)
+    (1.4-39), sigma_c the rock's uniaxial compressive strength (Pa)."""
+    return 0.67 * _positive("d (bar diameter)", d) ** 2 * math.sqrt(
+        _positive("sigma_b (bar yield strength)", sigma_b) * _positive("sigma_c (rock strength)", sigma_c))
+
+
+# ================================================================ circular lining in an elastic medium
+#
+# A thin circular lining of radius R and thickness t (per unit length of tunnel, plane strain) in an
+# elastic medium (E_m, nu_m) under a hydrostatic in-situ stress p0 (compression positive). Radial
+# displacements u are positive INWARD.
+#   Ring: a support pressure p on it gives the hoop thrust T = p R and the hoop strain T / (E_l' t),
+#         E_l' = E_l / (1 - nu_l^2) in plane strain, so u_l = p R^2 / (E_l' t).
+#   Hole: lowering the wall's pressure from p0 to p moves it by (p0 - p) R (1 + nu_m) / E_m (Lame, the
+#         hole in an infinite plane-strain medium: u = (p0 - p) R / 2G_m).
+# The lining is installed after a fraction lam_d (released_fraction) of p0 has been released, with the
+# wall at u_0 = lam_d p0 R (1 + nu_m) / E_m; it then shares the rest. Compatibility of the wall and the
+# ring from installation on:
+#
+#     p R^2 / (E_l' t) = ((1 - lam_d) p0 - p) R (1 + nu_m) / E_m
+#     p = (1 - lam_d) p0 / (1 + C (1 - nu_m)),     T = p R,
+#     C = E_m R (1 - nu_l^2) / (E_l t (1 - nu_m^2)),
+#
+# since E_m R / (E_l' t (1 + nu_m)) = C (1 - nu_m^2) / (1 + nu_m) = C (1 - nu_m). C is the compressibility
+# ratio of Einstein and Schwartz (1979), with A = t the lining's area per unit length; the thrust
+# is the issue's T = P R / (1 + C (1 - nu_m)), P = (1 - lam_d) p0, and for lam_d = 0 (the lining "wished
+# in place" before any unloading, the whole relaxation acting on the composite: their excavation
+# loading) the full-slip and no-slip answers of the hydrostatic case coincide (no shear on the
+# interface by symmetry) and equal this. (Loading the unstressed medium with its lining at infinity
+# instead, "external loading", gives 2 (1 - nu_m) p0 / (1 + C (1 - nu_m)): another problem.)
+# Thin-ring theory holds to O(t / R): the thick cylinder's answer differs by that (tested).
+
+
+def compressibility_ratio(*, R, t, E_l, nu_l, E_m, nu_m):
+    """Einstein and Schwartz's compressibility ratio C = E_m R (1 - nu_l^2) / (E_l t (1 - nu_m^2))
+    (notes above), t the lining's thickness (its area per unit length)."""
+    R, t = _positive("R (lining radius)", R), _positive("t (lining thickness)", t)
+    if t >= R:
+        raise ValueError(f"t = {t}: a lining thicker than its radius R = {R} is no ring")
+    E_l, E_m = _positive("E_l (lining modulus)", E_l), _positive("E_m (medium modulus)", E_m)
+    nu_l, nu_m = _scalar("nu_l", nu_l), _scalar("nu_m", nu_m)
+    for name, nu in (("nu_l", nu_l), ("nu_m", nu_m)):
+        if not -1.0 < nu < 0.5:
+            raise ValueError(f"{name} = {nu}: Poisson's ratio must lie in (-1, 1/2)")
+    return E_m * R * (1.0 - nu_l ** 2) / (E_l * t * (1.0 - nu_m ** 2))
+
+
+def lining_ring(*, R, t, E_l, nu_l, E_m, nu_m, p0, released_fraction=0.0):
+    """A thin circular lining in an elastic medium under hydrostatic in-situ stress p0 (compression
+    positive), installed after released_fraction (lam_d, in [0, 1]) of p0 has been released at the
+    wall: 0 is the lining in place before any unloading. Returns a dict (derivation above):
+
+        "compressibility"      C = E_m R (1 - nu_l^2) / (E_l t (1 - nu_m^2))
+        "support_pressure"     p = (1 - lam_d) p0 / (1 + C (1 - nu_m))       (Pa, on the lining)
+        "thrust"               T = p R                                        (N per m of tunnel, compression)
+        "hoop_stress"          T / t                                          (Pa, compression)
+        "lining_displacement"  p R^2 (1 - nu_l^2) / (E_l t)                   (m inward, since installation)
+        "wall_displacement"    lam_d p0 R (1 + nu_m) / E_m + the above        (m inward, since excavation)
+    """
+    C = compressibility_ratio(R=R, t=t, E_l=E_l, nu_l=nu_l, E_m=E_m, nu_m=nu_m)
+    p0 = _non_negative("p0 (in-situ stress)", p0)
+    lam_d = _scalar("released_fraction", released_fraction)
+    if not 0.0 <= lam_d <= 1.0:
+        raise ValueError(f"released_fraction = {lam_d}: must lie in [0, 1]")
+    p = (1.0 - lam_d) * p0 / (1.0 + C * (1.0 - nu_m))
+    lining = p * R * R * (1.0 - nu_l ** 2) / (E_l * t)
+    return {"compressibility": C, "support_pressure": p, "thrust": p * R, "hoop_stress": p * R / t,
+            "lining_displacement": lining, "wall_displacement": lam_d * p0 * R * (1.0 + nu_m) / E_m + lining}
+
+
+# ================================================================ a roof wedge held by cables
+#
+# A symmetric wedge in a horizontal roof, apex up, of weight W per unit length (N/m), its two faces
+# (joints) at half_apex_angle alpha from the vertical, dry and cohesionless (friction phi), held by
+# vertical cables. Limit equilibrium of the rigid wedge, the wedge about to fall: on each face a normal
+# force N (pressing on the wedge, directed inward and downward, vertical part -N sin alpha) and a
+# friction force at most N tan phi along the face, upward (vertical part N tan phi cos alpha). With the
+# cables' total force T upward:
+#
+#     T = W - 2 N (tan phi cos alpha - sin alpha)
+#
+# (horizontal balance holds by symmetry). N is what confines the wedge, from the horizontal stress in
+# the roof; it is an input here (normal_force), and with it ignored (N = 0, no confinement: the
+# conservative, usual design assumption) friction helps nothing and T = W, the dead weight. With N > 0
+# friction helps only when phi > alpha. Assumed: a rigid wedge, no cohesion, no water pressure, cables
+# vertical and unpretensioned, the faces' normal forces equal (symmetry).
+# How the cables share T: elastic cables of stiffnesses k_i at positions x_i under a rigid wedge that
+# translates and rotates but does not slide on the (unloaded) joints: F_i = k_i (v + w (x_i - x_c)),
+# with sum F_i = T and sum F_i (x_i - x_c) = 0 (the weight acting at the centroid x_c, the joints
+# carrying nothing): two equations for v and w. Equal cables placed symmetrically about x_c carry T / n each.
+
+
+def wedge_weight(*, unit_weight, span, half_apex_angle_deg):
+    """Weight per unit length of a symmetric roof wedge of base `span` (m) and half apex angle alpha:
+    unit_weight (N/m^3) times the triangle's area span^2 / (4 tan alpha) (its height is (span/2) / tan alpha)."""
+    alpha = _angle("half_apex_angle_deg", half_apex_angle_deg, 1e-6, 89.999)
+    span = _positive("span", span)
+    return _positive("unit_weight", unit_weight) * span * span / (4.0 * math.tan(alpha))
+
+
+def wedge_support_force(*, W, half_apex_angle_deg, phi_deg, normal_force=0.0):
+    """Total vertical cable force for limit equilibrium of the symmetric roof wedge (notes above):
+    W - 2 N (tan phi cos alpha - sin alpha), N = normal_force on each face (N/m; 0, the default: the
+    joints' confinement ignored, the answer W). A value <= 0 means the joints hold the wedge unaided."""
+    W = _positive("W (wedge weight)", W)
+    alpha = _angle("half_apex_angle_deg", half_apex_angle_deg, 1e-6, 89.999)
+    phi = _angle("phi_deg", phi_deg, 0.0, 89.999)
+    N = _non_negative("normal_force", normal_force)
+    return W - 2.0 * N * (math.tan(phi) * math.cos(alpha) - math.sin(alpha))
+
+
+def wedge_cable_forces(*, total, positions, stiffnesses=None, centroid=0.0):
+    """Forces of vertical elastic cables at `positions` (m, along the span) sharing `total` (N/m) under
+    a rigid wedge whose weight acts at `centroid` (notes above): F_i = k_i (v + w (x_i - x_c)) with
+    sum F_i = total and sum F_i (x_i - x_c) = 0. stiffnesses default to equal. A single cable must sit
+    at the centroid; cables all at one place elsewhere cannot stop the wedge rotating (ValueError)."""
+    total = _scalar("total", total)
+    x = np.atleast_1d(np.asarray(positions, dtype=float))
+    if x.ndim != 1 or x.size == 0 or not np.all(np.isfinite(x)):
+        raise ValueError(f"positions = {positions}: must be a non-empty list of finite numbers")
+    k = np.ones_like(x) if stiffnesses is None else np.atleast_1d(np.asarray(stiffnesses, dtype=float))
+    if k.shape != x.shape or np.any(~(k > 0.0)):
+        raise ValueError(f"stiffnesses = {stiffnesses}: one positive stiffness per cable")
+    arm = x - _scalar("centroid", centroid)
+    if np.all(arm == 0.0):       # at the centroid: no moment to resist, the wedge translates
+        return total * k / k.sum()
+    if x.size == 1:
+        raise ValueError(f"positions = {positions}: a single cable must sit at the centroid {centroid}")
+    A = np.array([[k.sum(), (k * arm).sum()], [(k * arm).sum(), (k * arm * arm).sum()]])
+    if abs(np.linalg.det(A)) <= 1e-12 * A[0, 0] * A[1, 1]:
+        raise ValueError(f"positions = {positions}: the cables all sit at one place and cannot stop the wedge rotating")
+    v, w = np.linalg.solve(A, np.array([total, 0.0]))
+    return k * (v + w * arm)
