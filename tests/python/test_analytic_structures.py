@@ -792,3 +792,19 @@ def test_wedge_cable_forces_balance_the_wedge():
         st.wedge_support_force(W=1.0, half_apex_angle_deg=90.0, phi_deg=30.0)
     with pytest.raises(ValueError, match="normal_force"):
         st.wedge_support_force(W=1.0, half_apex_angle_deg=30.0, phi_deg=30.0, normal_force=-1.0)
+
+
+@REQ
+def test_grout_bond_laws():
+    # 1.4-42 by quadrature of the annulus's shear strain F' / (2 pi r G_g) across it: D = 25 mm,
+    # t = 12.5 mm (ln 2), G_g = 9 GPa: 2 pi 9e9 / ln 2 = 8.158e10 N/m/m
+    D, t, G = 0.025, 0.0125, 9e9
+    slip, _ = integrate.quad(lambda r: 1.0 / (2.0 * math.pi * r * G), D / 2, D / 2 + t, epsabs=0.0, epsrel=1e-13)
+    assert st.grout_bond_stiffness(G_g=G, D=D, t=t) == approx(1.0 / slip, rel=1e-12)
+    assert st.grout_bond_stiffness(G_g=G, D=D, t=t) == approx(2 * math.pi * 9e9 / math.log(2.0), rel=1e-15)
+    # 1.4-44: pi * 0.05 * 2e6 = 314159.27 N/m
+    assert st.grout_bond_strength(D=D, t=t, tau_peak=2e6) == approx(math.pi * 1e5, rel=1e-15)
+    with pytest.raises(ValueError, match="G_g"):
+        st.grout_bond_stiffness(G_g=0.0, D=D, t=t)
+    with pytest.raises(ValueError, match="tau_peak"):
+        st.grout_bond_strength(D=D, t=t, tau_peak=-1.0)

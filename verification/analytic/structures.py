@@ -29,16 +29,18 @@ ValueError naming the argument.
 
 Sources: S. P. Timoshenko and J. M. Gere, Mechanics of Materials (the cantilever and simply supported
 beam formulas, any edition: "T&G"); R. D. Blevins, Formulas for Natural Frequency and Mode Shape, 1979,
-table 8-1 (the cantilever's beta_n L = 1.87510407, 4.69409113, 7.85475744, 10.99554073); M. Hetenyi,
-Beams on Elastic Foundation, University of Michigan Press, 1946 (the infinite beam under a point
-load, ch. III); H. H. Einstein and C. W. Schwartz, "Simplified analysis for tunnel supports",
-J. Geotech. Eng. Div. ASCE 105(GT4), 1979, 499-518 (the compressibility ratio C); S. Bjurstrom,
-"Shear strength of hard rock joints reinforced by grouted untensioned bolts", Proc. 3rd ISRM Congress,
-Denver, 1974 (the bolt's contribution to joint shear resistance); NUREG/CR-5429 Vol. 1 1.4.4
-(1.4-38 to 1.4-44, the reinforcement and grout laws). The formulas taken from these are each checked
-independently in tests/python/test_analytic_structures.py (a linear solve, an eigenvalue problem on
-another route, solve_bvp, quadrature, finite differences of the returned fields), so a misquoted
-source would show there.
+the chapter on straight beams (the cantilever's beta_n L = 1.87510407, 4.69409113, 7.85475744,
+10.99554073); M. Hetenyi, Beams on Elastic Foundation, University of Michigan Press, 1946 (the infinite
+beam under a concentrated load); H. H. Einstein and C. W. Schwartz, "Simplified analysis for tunnel
+supports", J. Geotech. Eng. Div. ASCE 105(GT4), 1979, 499-518 (the compressibility ratio C); S.
+Bjurstrom (cited as 1979 in NUREG/CR-5429; the paper usually cited for the bolt formula is "Shear
+strength of hard rock joints reinforced by grouted untensioned bolts", 3rd ISRM Congress, Denver,
+1974); NUREG/CR-5429 Vol. 1 1.4.4 (1.4-38 to 1.4-44, the reinforcement and grout laws). Chapter and
+table numbers and the exact wording of the books were not checked against them (they were not at
+hand): every formula is derived here in a few lines and verified independently in
+tests/python/test_analytic_structures.py (a linear solve, an eigenvalue problem on another route,
+solve_bvp, quadrature, finite differences of the returned fields, vector equilibrium), so a
+misquoted source would show there.
 """
 import math
 
@@ -278,6 +280,23 @@ def cable_first_slip_force(*, L, EA, k_bond, s_bond):
 def cable_pullout_capacity(*, L, s_bond):
     """The peak pull-out force of the spring-slider bond: s_bond L (the whole length slipping)."""
     return _positive("s_bond (bond strength per unit length)", s_bond) * _positive("L (cable length)", L)
+
+
+def grout_bond_stiffness(*, G_g, D, t):
+    """The grout annulus's bond stiffness per unit length (N/m per m), 1.4-42: 2 pi G_g / ln(1 + 2t/D),
+    G_g the grout's shear modulus, D the bar's diameter, t the annulus's thickness. Derivation: a
+    force F' per unit length crossing the annulus D/2 <= r <= D/2 + t puts the shear stress
+    F' / (2 pi r) on each cylinder r, the strain du/dr = F' / (2 pi r G_g), and the relative displacement
+    of bar and rock is (F' / 2 pi G_g) ln((D/2 + t) / (D/2))."""
+    D, t = _positive("D (bar diameter)", D), _positive("t (annulus thickness)", t)
+    return 2.0 * math.pi * _positive("G_g (grout shear modulus)", G_g) / math.log1p(2.0 * t / D)
+
+
+def grout_bond_strength(*, D, t, tau_peak):
+    """The grout annulus's bond strength per unit length (N/m), 1.4-44: pi (D + 2t) tau_peak, the peak
+    shear stress on the grout-rock interface (the annulus's outer perimeter)."""
+    D, t = _positive("D (bar diameter)", D), _positive("t (annulus thickness)", t)
+    return math.pi * (D + 2.0 * t) * _positive("tau_peak (peak bond shear stress)", tau_peak)
 
 
 def cable_slip_length(*, F0, L, EA, k_bond, s_bond):
@@ -585,7 +604,7 @@ def cantilever_lumped_frequencies(*, E, I, rho, A, L, elements, modes=1, rotary_
 #
 # EI w'''' + k w = p(x), k the foundation modulus (N/m of deflection per m of beam), w positive into
 # the foundation (the load's direction), M = -EI w'' sagging positive. lambda = (k / 4EI)^(1/4) (1/m).
-# Infinite beam under a point load P at x = 0 (Hetenyi 1946, ch. III):
+# Infinite beam under a point load P at x = 0 (Hetenyi 1946):
 #
 #     w = (P lambda / 2k) e^{-lambda |x|} (cos lambda x + sin lambda |x|),
 #     M = (P / 4 lambda) e^{-lambda |x|} (cos lambda x - sin lambda |x|).
