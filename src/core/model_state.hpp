@@ -29,7 +29,7 @@ void visitState(A& a, FlowBoundary& b) {
 template <class A>
 void visitState(A& a, FlowState& f) {
   a(f.present), a(f.on), a(f.fluid), a(f.boundaries), a(f.knots), a(f.sides), a(f.domains), a(f.totals), a(f.subStep);
-  a(f.subSteps), a(f.unbalancedRatio);
+  a(f.subSteps), a(f.solveIterations), a(f.unbalancedRatio);
 }
 template <class A>
 void visitState(A& a, Blocks& b) {

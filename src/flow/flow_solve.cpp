@@ -15,6 +15,39 @@
 
 namespace vdec {
 
+namespace {
+
+// Newton iterations of a Bingham fluid's solve before it is called unsettled.
+constexpr int kMostNewtonIterations = 100;
+// A domain's net outflow, over the scale of its rounding (the sum over its knots of C times the
+// pressures and threshold its flow is formed from), below which it balances: some 5000 eps.
+constexpr double kBalanced = 1e-12;
+// The share of its conductance a knot below its threshold keeps in the Newton matrix, so that the
+// matrix stays positive definite over domains no flowing knot reaches; it does not enter the flows.
+constexpr double kDeadKnotStiffness = 1e-6;
+// Bisections of the line search along a Newton step.
+constexpr int kLineSearchHalvings = 40;
+
+// A linear system over the unknown domains, solved by LDLT.
+Eigen::VectorXd solveSystem(const Model& m, int count, const std::vector<Eigen::Triplet<double>>& entries,
+                            const Eigen::VectorXd& rhs, bool steady) {
+  Eigen::SparseMatrix<double> a(count, count);
+  a.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
+  Eigen::VectorXd solved;
+  if (solver.info() == Eigen::Success) solved = solver.solve(rhs);
+  if (solver.info() != Eigen::Success || !solved.allFinite()) {
+    std::ostringstream s;
+    s << "the " << (steady ? "steady" : "implicit") << " flow solve over " << count << " domains failed at cycle "
+      << m.cycle << ": the network's conductances or areas are not of a size a double can take; check the joints' "
+      << "apertures and [fluid] viscosity and bulk_modulus";
+    throw InstabilityError(s.str());
+  }
+  return solved;
+}
+
+}  // namespace
+
 void solveFlow(Model& m, const std::vector<double>& conductance, double h, bool steady) {
   FlowState& fs = m.flow;
   const int n = static_cast<int>(fs.domains.size());
@@ -110,23 +143,111 @@ void solveFlow(Model& m, const std::vector<double>& conductance, double h, bool 
     }
   }
   Eigen::VectorXd solved;
-  if (count > 0) {
-    Eigen::SparseMatrix<double> a(count, count);
-    a.setFromTriplets(entries.begin(), entries.end());
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(a);
-    if (solver.info() == Eigen::Success) solved = solver.solve(rhs);
-    if (solver.info() != Eigen::Success || !solved.allFinite()) {
-      std::ostringstream s;
-      s << "the " << (steady ? "steady" : "implicit") << " flow solve over " << count << " domains failed at cycle "
-        << m.cycle << ": the network's conductances or areas are not of a size a double can take; check the joints' "
-        << "apertures and [fluid] viscosity and bulk_modulus";
-      throw InstabilityError(s.str());
-    }
-  }
+  if (count > 0) solved = solveSystem(m, count, entries, rhs, steady);
   // The flow through every knot from the solved pressures moves the fluid, as a sub-step does.
   std::vector<double> piezometric(n);
   for (int d = 0; d < n; ++d)
     piezometric[d] = unknown[d] >= 0 ? solved[unknown[d]] : fs.domains[d].pressure + offset(fs.domains[d].centre);
+  fs.solveIterations = 1;
+  if (fs.fluid.yieldStress > 0.0 && count > 0) {
+    // A Bingham fluid: the Newtonian pressures above start Newton's method on the balance of the
+    // unknown domains, the gradient of a convex potential (the knots' laws are monotone), damped
+    // by a line search along each step: plain Newton cycles between sets of flowing knots.
+    auto pressureOf = [&](const std::vector<double>& p, const FlowKnot& k, int i) {
+      const int d = k.domain[i];
+      return d >= 0 ? p[d] : boundaryValue(m, fs.boundaries[k.boundary], k.point) + offset(k.point);
+    };
+    auto open = [&](std::size_t k) {
+      const FlowKnot& knot = fs.knots[k];
+      return (knot.domain[0] >= 0 || heldMouth(knot)) && (knot.domain[1] >= 0 || heldMouth(knot)) && conductance[k] > 0.0;
+    };
+    // Each unknown domain's net outflow less its source, plus its storage's rate (implicit), and
+    // the sum of the sizes of those terms (the scale of its rounding).
+    Eigen::VectorXd size(count);
+    auto imbalance = [&](const std::vector<double>& p) {
+      Eigen::VectorXd g = Eigen::VectorXd::Zero(count);
+      size.setZero();
+      auto add = [&](int d, double term, double rounding) {
+        g[unknown[d]] += term;
+        size[unknown[d]] += rounding;
+      };
+      for (int d = 0; d < n; ++d) {
+        if (unknown[d] < 0) continue;
+        add(d, -source[d], std::abs(source[d]));
+        if (steady) continue;
+        const double storage = fs.domains[d].area / (kw * h), before = fs.domains[d].pressure + offset(fs.domains[d].centre);
+        add(d, storage * (p[d] - before), storage * (std::abs(p[d]) + std::abs(before)));
+      }
+      for (std::size_t k = 0; k < fs.knots.size(); ++k) {
+        if (!open(k)) continue;
+        const FlowKnot& knot = fs.knots[k];
+        const double p0 = pressureOf(p, knot, 0), p1 = pressureOf(p, knot, 1);
+        const double q = knotFlow(m, knot, conductance[k], p0 - p1);
+        // Its rounding scales with the pressures it is the difference of, and the threshold.
+        const double rounding = conductance[k] * (std::abs(p0) + std::abs(p1) + 2.0 * fs.fluid.yieldStress * knot.length / knot.aperture);
+        if (knot.domain[0] >= 0 && unknown[knot.domain[0]] >= 0) add(knot.domain[0], q, rounding);
+        if (knot.domain[1] >= 0 && unknown[knot.domain[1]] >= 0) add(knot.domain[1], -q, rounding);
+      }
+      return g;
+    };
+    auto balances = [&](const Eigen::VectorXd& g) {
+      for (int i = 0; i < count; ++i)
+        if (std::abs(g[i]) > kBalanced * size[i]) return false;
+      return true;
+    };
+    auto moved = [&](double alpha, const Eigen::VectorXd& step) {
+      std::vector<double> p = piezometric;
+      for (int d = 0; d < n; ++d)
+        if (unknown[d] >= 0) p[d] += alpha * step[unknown[d]];
+      return p;
+    };
+    for (Eigen::VectorXd g = imbalance(piezometric); !balances(g); g = imbalance(piezometric)) {
+      if (fs.solveIterations > kMostNewtonIterations) {
+        std::ostringstream s;
+        s << "the " << (steady ? "steady" : "implicit") << " flow of the Bingham fluid did not settle at cycle " << m.cycle
+          << ": after " << kMostNewtonIterations << " Newton iterations a domain still gains or loses "
+          << shown(g.lpNorm<Eigen::Infinity>()) << " m^2/s; use [fluid] scheme = \"explicit\"";
+        throw InstabilityError(s.str());
+      }
+      ++fs.solveIterations;
+      // The tangent of the knots' laws: C (1 - r^3) for Buckingham's, C for the linear law's,
+      // on the flowing knots; a little of C on those below the threshold.
+      std::vector<Eigen::Triplet<double>> tangent;
+      for (int d = 0; d < n; ++d)
+        if (unknown[d] >= 0 && !steady) tangent.emplace_back(unknown[d], unknown[d], fs.domains[d].area / (kw * h));
+      for (std::size_t k = 0; k < fs.knots.size(); ++k) {
+        if (!open(k)) continue;
+        const FlowKnot& knot = fs.knots[k];
+        const double dp = pressureOf(piezometric, knot, 0) - pressureOf(piezometric, knot, 1);
+        const double c = conductance[k];
+        double slope = kDeadKnotStiffness * c;
+        if (knotFlow(m, knot, c, dp) != 0.0) {
+          const double r = 2.0 * fs.fluid.yieldStress * knot.length / (knot.aperture * std::abs(dp));
+          slope = std::max(slope, fs.fluid.buckingham ? c * (1.0 - r * r * r) : c);
+        }
+        int u[2];
+        for (int i = 0; i < 2; ++i) u[i] = knot.domain[i] >= 0 ? unknown[knot.domain[i]] : -1;
+        for (int i = 0; i < 2; ++i) {
+          if (u[i] < 0) continue;
+          tangent.emplace_back(u[i], u[i], slope);
+          if (u[1 - i] >= 0) tangent.emplace_back(u[i], u[1 - i], -slope);
+        }
+      }
+      const Eigen::VectorXd step = solveSystem(m, count, tangent, -g, steady);
+      // The potential's slope along the step rises with alpha (it is convex): its zero in (0, 1], or 1.
+      auto slopeAt = [&](double alpha) { return imbalance(moved(alpha, step)).dot(step); };
+      double alpha = 1.0;
+      if (slopeAt(1.0) > 0.0) {
+        double lo = 0.0, hi = 1.0;
+        for (int i = 0; i < kLineSearchHalvings; ++i) {
+          const double mid = 0.5 * (lo + hi);
+          (slopeAt(mid) > 0.0 ? hi : lo) = mid;
+        }
+        alpha = 0.5 * (lo + hi);
+      }
+      piezometric = moved(alpha, step);
+    }
+  }
   // Steady: a group of domains that no held pressure reaches comes to rest at one piezometric
   // pressure, the one at which it holds the fluid it has (hydrostatic under gravity).
   std::vector<char> settled(n, 0);
@@ -186,7 +307,7 @@ void solveFlow(Model& m, const std::vector<double>& conductance, double h, bool 
     const double p1 = knot.domain[1] >= 0 ? piezometric[knot.domain[1]] : known[1];
     // A group at rest passes nothing (its dry domains' heads differ, and no fluid is there to pass).
     const bool atRest = knot.domain[0] >= 0 && knot.domain[1] >= 0 && settled[knot.domain[0]] && settled[knot.domain[1]];
-    knot.flow = atRest ? 0.0 : conductance[k] * (p0 - p1);
+    knot.flow = atRest ? 0.0 : knotFlow(m, knot, conductance[k], p0 - p1);
   }
   if (!steady) limitDrainage(fs, h);
   for (const FlowKnot& knot : fs.knots) passThroughKnot(fs, knot, knot.flow * h);

@@ -1,7 +1,8 @@
 #pragma once
 // The domain pressures by a sparse linear solve over the network (Eigen's LDLT), instead of the
 // explicit sub-steps: backward Euler over the step (implicit; unconditionally stable, one solve a
-// step) or the steady flow of the present apertures (no storage). Newtonian fluids only.
+// step) or the steady flow of the present apertures (no storage); a Bingham fluid by Newton's
+// method on the domains' balance, damped by a line search.
 #include <vector>
 
 #include "core/model.hpp"

@@ -122,6 +122,7 @@ struct FlowState {
   FlowTotals totals;
   double subStep = 0.0;          // the fluid step of the last mechanical step, s
   int subSteps = 0;              // NSFDT of the last mechanical step
+  int solveIterations = 0;       // solves in the last step (implicit, steady): 1, and a Bingham fluid's Newton steps
   // The domains' net inflow over the flow through the knots, at the last sub-step: 0 in a
   // steady flow (or none); the run's unbalanced ratio includes it while the fluid flows.
   double unbalancedRatio = 0.0;

@@ -82,9 +82,6 @@ void readFluid(TableReader& top, SceneDefinition& scene) {
     if (scheme == "implicit") f.scheme = FlowScheme::Implicit;
     else if (scheme == "steady") f.scheme = FlowScheme::Steady;
     else if (scheme != "explicit") t->fail("scheme", "unknown scheme '" + scheme + "'; use explicit, implicit or steady");
-    if (f.scheme != FlowScheme::Explicit && f.yieldStress > 0.0)
-      t->fail("scheme", "'" + scheme + "' solves the flow of a Newtonian fluid; a Bingham fluid (yield_stress > 0) flows "
-                        "by the explicit scheme only");
     if (f.scheme != FlowScheme::Explicit && t->has("step_fraction"))
       t->fail("step_fraction", "sets the explicit scheme's sub-step; the '" + scheme + "' scheme takes none");
     f.initialPressure = t->nonNegative("initial_pressure", 0.0);

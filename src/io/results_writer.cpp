@@ -143,6 +143,7 @@ void writeFlow(nlohmann::json& j, const Model& m) {
                 {"sub_step", fs.subStep},
                 {"sub_steps_last_step", fs.subSteps},
                 {"sub_steps_total", t.subSteps},
+                {"solve_iterations_last_step", fs.solveIterations},
                 {"network_changes", t.networkChanges},
                 {"balance", {{"inflow", t.inflow},
                              {"outflow", t.outflow},

@@ -157,3 +157,35 @@ def test_the_total_flow_is_the_independent_solve_and_the_balance_closes(solved):
     # over the two steps: under 10 eps of the content)
     balance = results["fluid"]["balance"]
     assert abs(balance["imbalance"]) <= 10.0 * EPS * balance["content"]
+
+
+# Yield stresses for which the network has many, some and few flowing knots (66, 25 and 4 of 104).
+BINGHAM = [0.3, 3.0, 5.0]
+
+
+@pytest.mark.requirements("REQ-FLOW-003", "REQ-FLOW-007")
+@pytest.mark.parametrize("yield_stress", BINGHAM)
+def test_a_bingham_fluids_steady_knot_flows_are_the_independent_solve(tmp_path, yield_stress):
+    # The same network with a Bingham fluid (the linear law) under the steady scheme: vdec's damped
+    # Newton iteration against the reference's (steady_network_flow). The flows are unique, the
+    # pressures of domains no flowing knot joins to a held one are not, so the flows are compared.
+    # Both balance every free domain to the rounding of its flows, which is set by the largest
+    # conductance times the pressures (C_max P eps, a few 1e-15 m^2/s here) and spreads through
+    # the solve by at most cond(K): the Newtonian tolerance, taken of the Newtonian network's
+    # largest flow, bounds it.
+    done = subprocess.run([VDEC, "run", str(PROBLEM / "scene.toml"), "--out", str(tmp_path),
+                           "--set", f"fluid.yield_stress={yield_stress}"], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    results = json.loads((tmp_path / "results.json").read_text())
+    scene = tomllib.loads((PROBLEM / "scene.toml").read_text())
+    net, knots = network(results, scene)
+    viscosity = scene["fluid"]["viscosity"]
+    reference = steady_network_flow(viscosity=viscosity, yield_stress=yield_stress, **net)
+    newtonian = steady_network_flow(viscosity=viscosity, **net)
+    tolerance = 10.0 * condition(net, viscosity) * EPS * np.max(np.abs(newtonian["link_flow"]))
+    flow = np.array([results["knots"]["flow"][k] for k in knots])
+    assert np.max(np.abs(flow - reference["link_flow"])) <= tolerance
+    assert np.count_nonzero(np.abs(reference["link_flow"]) > tolerance) == np.count_nonzero(np.abs(flow) > tolerance)
+    assert results["fluid"]["solve_iterations_last_step"] >= 1
+    balance = results["fluid"]["balance"]
+    assert abs(balance["imbalance"]) <= 10.0 * EPS * balance["content"]

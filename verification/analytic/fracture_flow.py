@@ -859,11 +859,17 @@ def _bingham_steady_state(n, fixed, pressure, source, i, j, C, threshold, limit,
         iterations += 1
         dp = candidate[i] - candidate[j]
         slack = _LAW_SLACK * max(np.max(np.abs(candidate)), np.max(threshold))
-        if np.all(np.where(active, sign * dp >= threshold - slack, np.abs(dp) <= threshold + slack)):
+        flow = np.where(active, C * (dp - sign * threshold), 0.0)
+        # A set can be obeyed by a solve that held a stagnant domain on a flowing link (held, it
+        # takes any flow): the free domains must balance too, to the rounding of their flows.
+        out_of = np.bincount(i, weights=flow, minlength=n) - np.bincount(j, weights=flow, minlength=n)
+        balance_slack = _LAW_SLACK * max(np.max(C) * max(np.max(np.abs(candidate)), np.max(threshold)), 1e-300)
+        balanced = np.all(np.abs(np.where(fixed, 0.0, out_of - source)) <= balance_slack)
+        if balanced and np.all(np.where(active, sign * dp >= threshold - slack, np.abs(dp) <= threshold + slack)):
             # stagnant: joined to no fixed domain by links that flow by more than round-off
             moving = active & (sign * dp - threshold > slack)
             stagnant = ~fixed & ~_determined(n, fixed, i, j, moving)[0]
-            return candidate, np.where(active, C * (dp - sign * threshold), 0.0), stagnant, iterations
+            return candidate, flow, stagnant, iterations
         if iterations >= limit:
             raise RuntimeError(f"steady_network_flow: the set of flowing links did not settle in "
                                f"{iterations} solves (Bingham, yield_stress = {yield_stress} Pa); "
