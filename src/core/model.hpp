@@ -10,6 +10,7 @@
 
 #include "boundary/time_function.hpp"
 #include "flow/flow_state.hpp"
+#include "structure/structure_state.hpp"
 #include "zone/mohr_coulomb.hpp"
 #include "core/vec2.hpp"
 
@@ -354,6 +355,7 @@ struct Model {
   std::vector<InitialWave> initialWaves;
   std::vector<TimeFunction> timeFunctions;
   FlowState flow;  // fluid in the joints, when the scene has a [fluid] table
+  Structures structures;  // beams and their ties to the rock
   // The outline edges of deformable blocks (outer boundaries and holes), each directed with the
   // block on its left: gridpoints from -> to.
   struct BoundaryEdge {

@@ -66,11 +66,29 @@ void visitState(A& a, BoundaryCondition& b) {
   a(b.rigidDashpots), a(b.freeField), a(b.active);
 }
 template <class A>
+void visitState(A& a, BeamMaterial& b) {
+  a(b.name), a(b.young), a(b.area), a(b.inertia), a(b.density), a(b.tieNormalStiffness), a(b.tieShearStiffness);
+  a(b.tieCohesion), a(b.tieFriction), a(b.tieTension);
+}
+template <class A>
+void visitState(A& a, Beam& b) {
+  a(b.name), a(b.material), a(b.firstNode), a(b.nodeCount), a(b.firstElement), a(b.elementCount), a(b.closed);
+}
+template <class A>
+void visitState(A& a, Structures& s) {
+  BeamNodes& n = s.nodes;
+  BeamElements& e = s.elements;
+  a(s.materials), a(s.beams), a(n.beam), a(n.initialPosition), a(n.position), a(n.rotation), a(n.velocity);
+  a(n.angularVelocity), a(n.force), a(n.moment), a(n.tieForce), a(n.forceScale), a(n.appliedForce), a(n.appliedMoment), a(n.mass);
+  a(n.rotaryInertia), a(n.length), a(n.fixed), a(e.node), a(e.beam), a(e.restLength), a(e.restAngle);
+  a(e.axialForce), a(e.shearForce), a(e.endMoment), a(s.ties);
+}
+template <class A>
 void visitState(A& a, Model& m) {
   a(m.blockMaterials), a(m.jointMaterials), a(m.blocks), a(m.vertices), a(m.gridpoints), a(m.zones);
   a(m.gridpointZones.start), a(m.gridpointZones.slot), a(m.loadedEdges), a(m.drivenVelocities);
   a(m.boundaryConditions), a(m.viscousEdges), a(m.rigidViscousEdges), a(m.freeFields), a(m.initialWaves);
-  a(m.timeFunctions), a(m.flow), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
+  a(m.timeFunctions), a(m.flow), a(m.structures), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
   a(m.defaultJoint), a(m.gravity), a(m.roundingLength), a(m.contactTolerance), a(m.time), a(m.cycle);
 }
 

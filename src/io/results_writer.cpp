@@ -93,6 +93,55 @@ void writeContinuum(nlohmann::json& j, const Model& m) {
   j["zoning"] = quality;
 }
 
+// Beams: their nodes (initial position, displacement, rotation), elements (forces and end
+// moments of the last step) and ties (the force on the node, broken, slipping).
+void writeStructures(nlohmann::json& j, const Model& m) {
+  const Structures& st = m.structures;
+  const BeamNodes& nd = st.nodes;
+  const BeamElements& el = st.elements;
+  std::vector<double> x0, y0, ux, uy, rotation, mass;
+  for (int i = 0; i < nd.size(); ++i) {
+    x0.push_back(nd.initialPosition[i].x);
+    y0.push_back(nd.initialPosition[i].y);
+    ux.push_back(nd.position[i].x - nd.initialPosition[i].x);
+    uy.push_back(nd.position[i].y - nd.initialPosition[i].y);
+    rotation.push_back(nd.rotation[i]);
+    mass.push_back(nd.mass[i]);
+  }
+  std::vector<int> node0, node1;
+  std::vector<double> cx0, cy0, moment0, moment1;
+  for (int e = 0; e < el.size(); ++e) {
+    node0.push_back(el.node[e][0]);
+    node1.push_back(el.node[e][1]);
+    const Vec2 centre = 0.5 * (nd.initialPosition[el.node[e][0]] + nd.initialPosition[el.node[e][1]]);
+    cx0.push_back(centre.x);
+    cy0.push_back(centre.y);
+    moment0.push_back(el.endMoment[e][0]);
+    moment1.push_back(el.endMoment[e][1]);
+  }
+  std::vector<int> tieNode, tieBlock, tieZone, broken, slipping;
+  std::vector<double> fx, fy;
+  for (const BeamTie& t : st.ties) {
+    tieNode.push_back(t.node);
+    tieBlock.push_back(t.block);
+    tieZone.push_back(t.zone);
+    fx.push_back(t.force.x);
+    fy.push_back(t.force.y);
+    broken.push_back(t.broken);
+    slipping.push_back(t.slipping);
+  }
+  std::vector<std::string> names;
+  for (const Beam& b : st.beams) names.push_back(b.name);
+  j["beams"] = {{"names", names},
+                {"nodes", {{"beam", nd.beam}, {"x0", x0}, {"y0", y0}, {"displacement_x", ux}, {"displacement_y", uy},
+                           {"rotation", rotation}, {"mass", mass}}},
+                {"elements", {{"beam", el.beam}, {"node_0", node0}, {"node_1", node1}, {"x0", cx0}, {"y0", cy0},
+                              {"length", el.restLength}, {"axial_force", el.axialForce}, {"shear_force", el.shearForce},
+                              {"moment_0", moment0}, {"moment_1", moment1}}},
+                {"ties", {{"node", tieNode}, {"block", tieBlock}, {"zone", tieZone}, {"force_x", fx}, {"force_y", fy},
+                          {"broken", broken}, {"slipping", slipping}}}};
+}
+
 // Fluid in the joints: the domains (at their present centres), the knots (at their present
 // points) and the fluid balance.
 void writeFlow(nlohmann::json& j, const Model& m) {
@@ -291,6 +340,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
   j["contacts"] = contacts;
   if (m.zones.size() > 0) writeContinuum(j, m);
   if (m.flow.present) writeFlow(j, m);
+  if (m.structures.any()) writeStructures(j, m);
 
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

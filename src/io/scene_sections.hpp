@@ -49,6 +49,9 @@ void readHistories(TableReader& top, SceneDefinition& scene);
 
 // [fluid] and [[flow_boundary]]; the fluid keys of a [[joint_material]].
 void readFluid(TableReader& top, SceneDefinition& scene);
+
+// [[beam_material]], [[beam]], [[beam_node]] (read_structures.cpp).
+void readStructures(TableReader& top, SceneDefinition& scene);
 FlowBoundaryDefinition readFlowBoundary(TableReader& r);
 void readJointFlowKeys(TableReader& r, JointMaterial& joint);
 

@@ -10,6 +10,7 @@
 #include "motion/gridpoint_motion.hpp"
 #include "motion/rigid_motion.hpp"
 #include "run/component.hpp"
+#include "structure/beams.hpp"
 #include "zone/cst.hpp"
 
 namespace vdec {
@@ -132,6 +133,21 @@ Component fractureFlow(RunContext& run) {
   return c;
 }
 
+// Beams (1.4.4): the elements' and ties' forces with the step's forces, the nodes' motion with
+// the blocks'. The ties' springs and slip enter the energy account as work on nodes and rock.
+Component structures(RunContext& run) {
+  Component c{"structures", {}, [&run] { return beamTimeStep(run.model, run.settings.frac, run.settings.zoneFraction); }};
+  c.stages.push_back({"beam-forces", [&run] {
+                        run.step.strainEnergy += computeBeamForces(run.model, run.model.cycle == 0 ? 0.0 : run.dt).strainEnergy;
+                      }});
+  c.stages.push_back({"beam-motion",
+                      [&run] {
+                        run.step.merge(integrateBeamNodes(run.model, run.dt, run.massDamping, run.settings.localDamping));
+                      },
+                      StepPart::Motion});
+  return c;
+}
+
 }  // namespace
 
 std::vector<Component> sceneComponents(RunContext& run) {
@@ -143,6 +159,7 @@ std::vector<Component> sceneComponents(RunContext& run) {
   if (m.zones.size() > 0 || !m.rigidViscousEdges.empty()) components.push_back(boundaries(run));
   if (!m.freeFields.empty()) components.push_back(freeField(run));
   if (m.flow.on) components.push_back(fractureFlow(run));
+  if (m.structures.any()) components.push_back(structures(run));
   return components;
 }
 

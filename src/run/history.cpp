@@ -2,6 +2,7 @@
 
 #include "flow/fracture_flow.hpp"
 
+#include <algorithm>
 #include <numbers>
 
 namespace vdec {
@@ -57,6 +58,12 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::FluidOutflow, "fluid.outflow", S::Fluid, "m^2", "fluid that has left the model through held mouths and domains"},
       {Q::FluidContent, "fluid.content", S::Fluid, "m^2", "fluid the domains hold, as its volume at zero pressure"},
       {Q::FluidImbalance, "fluid.imbalance", S::Fluid, "m^2", "inflow - outflow + created - removed - (content - initial content): zero to round-off"},
+      {Q::BeamDisplacementX, "beam.displacement_x", S::Beam, "m", "x displacement of the beam's node nearest the point"},
+      {Q::BeamDisplacementY, "beam.displacement_y", S::Beam, "m", "y displacement of the beam's node nearest the point"},
+      {Q::BeamRotation, "beam.rotation", S::Beam, "rad", "rotation of the beam's node nearest the point, counter-clockwise positive"},
+      {Q::BeamAxialForce, "beam.axial_force", S::Beam, "N/m", "axial force of the beam's element nearest the point, tension positive"},
+      {Q::BeamShearForce, "beam.shear_force", S::Beam, "N/m", "shear force dM/ds of the beam's element nearest the point (s along the beam)"},
+      {Q::BeamMoment, "beam.moment", S::Beam, "N m/m", "bending moment E I kappa of the beam's element nearest the point, linear between its ends, at the point's projection on it"},
   };
   return table;
 }
@@ -172,6 +179,23 @@ double fluidMeasure(const Model& m, const HistorySpec& h) {
   }
 }
 
+double beamMeasure(const Model& m, const HistorySpec& h) {
+  const BeamNodes& nd = m.structures.nodes;
+  const BeamElements& el = m.structures.elements;
+  switch (h.quantity) {
+    case HistoryQuantity::BeamDisplacementX: return nd.position[h.beamNode].x - nd.initialPosition[h.beamNode].x;
+    case HistoryQuantity::BeamDisplacementY: return nd.position[h.beamNode].y - nd.initialPosition[h.beamNode].y;
+    case HistoryQuantity::BeamRotation: return nd.rotation[h.beamNode];
+    case HistoryQuantity::BeamAxialForce: return el.axialForce[h.beamElement];
+    case HistoryQuantity::BeamShearForce: return el.shearForce[h.beamElement];
+    default: {
+      const Vec2 a = nd.initialPosition[el.node[h.beamElement][0]], b = nd.initialPosition[el.node[h.beamElement][1]];
+      const double t = std::clamp(dot(h.point - a, b - a) / dot(b - a, b - a), 0.0, 1.0);
+      return (1.0 - t) * el.endMoment[h.beamElement][0] + t * el.endMoment[h.beamElement][1];
+    }
+  }
+}
+
 }  // namespace
 
 bool appendHistorySample(HistorySeries& series, double t, double value, std::size_t limit) {
@@ -225,7 +249,11 @@ double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) 
     case HistoryQuantity::MeanSyy: return meanZoneStress(m, m.zones.syy);
     case HistoryQuantity::MeanSxy: return meanZoneStress(m, m.zones.sxy);
     default:
-      return findHistorySubject(h.quantity) == HistorySubject::Fluid ? fluidMeasure(m, h) : jointMeasure(m, h);
+      switch (findHistorySubject(h.quantity)) {
+        case HistorySubject::Fluid: return fluidMeasure(m, h);
+        case HistorySubject::Beam: return beamMeasure(m, h);
+        default: return jointMeasure(m, h);
+      }
   }
 }
 

@@ -23,12 +23,14 @@ enum class HistoryQuantity {
   MeanSxx, MeanSyy, MeanSxy,
   BlockAccelerationX, BlockAccelerationY, GridpointAccelerationX, GridpointAccelerationY,
   DomainPressure, KnotFlow, KnotAperture, FluidInflow, FluidOutflow, FluidContent, FluidImbalance,
+  BeamDisplacementX, BeamDisplacementY, BeamRotation, BeamAxialForce, BeamShearForce, BeamMoment,
 };
 
 
 // Fluid: the fluid's account (fluid.*), or the domain or knot nearest a point at each sample
 // (domain.*, knot.*): the network changes with the contacts, so a point, not an id, names them.
-enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone, Fluid };
+// Beam: the node (displacements, rotation) or the element (forces) of a named beam nearest a point.
+enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone, Fluid, Beam };
 
 struct HistoryQuantityInfo {
   HistoryQuantity quantity;
@@ -52,7 +54,9 @@ struct HistorySpec {
   int gridpoint = -1;   // Gridpoint subject
   int zone = -1;        // Zone subject
   int every = 1;
-  Vec2 point;           // Fluid subject: domain.* and knot.* quantities
+  Vec2 point;           // Fluid subject: domain.* and knot.* quantities; Beam: where along the element
+  int beamNode = -1;    // Beam subject: the node nearest the point
+  int beamElement = -1; // and the element nearest it
 };
 
 // Acceleration quantities are formed by the cycle from the velocity they are the rate of:

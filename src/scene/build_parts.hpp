@@ -35,6 +35,9 @@ void addFluid(Model& model, const SceneDefinition& scene);
 // `gravity`, the gravity in force when it comes on.
 FlowBoundary flowBoundary(Model& model, const FlowBoundaryDefinition& definition, Vec2 gravity);
 
+// The beams, their materials, nodes and ties to the rock into the model (after the blocks).
+void addStructures(Model& model, const SceneDefinition& scene);
+
 // History subjects by position (initial configuration): the block's gridpoint nearest `point`,
 // and the zone of the block that holds `point` (-1 when none does).
 int nearestGridpoint(const Model& model, int block, Vec2 point);

@@ -413,6 +413,25 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
   } else if (info->subject == HistorySubject::Fluid) {
     if (!m.flow.present) d.origin.fail("quantity", d.quantity + " is a fluid-flow quantity, and the scene has no [fluid] table");
     if (d.point) h.point = *d.point;
+  } else if (info->subject == HistorySubject::Beam) {
+    const Structures& st = m.structures;
+    int beam = -1;
+    for (int i = 0; i < static_cast<int>(st.beams.size()); ++i)
+      if (st.beams[i].name == d.beam) beam = i;
+    if (beam < 0) d.origin.fail("beam", "no [[beam]] is named '" + d.beam + "'");
+    const Beam& b = st.beams[beam];
+    h.point = *d.point;
+    auto distance = [&](int e) {
+      const Vec2 p = st.nodes.initialPosition[st.elements.node[e][0]], q = st.nodes.initialPosition[st.elements.node[e][1]];
+      const double t = std::clamp(dot(h.point - p, q - p) / dot(q - p, q - p), 0.0, 1.0);
+      return norm(h.point - (p + t * (q - p)));
+    };
+    h.beamNode = b.firstNode;
+    for (int n = b.firstNode; n < b.firstNode + b.nodeCount; ++n)
+      if (norm(st.nodes.initialPosition[n] - h.point) < norm(st.nodes.initialPosition[h.beamNode] - h.point)) h.beamNode = n;
+    h.beamElement = b.firstElement;
+    for (int e = b.firstElement; e < b.firstElement + b.elementCount; ++e)
+      if (distance(e) < distance(h.beamElement)) h.beamElement = e;
   } else if (info->subject == HistorySubject::Joint) {
     h.block = blockNamed(m, d.origin, "blocks", d.blocks[0]);
     h.otherBlock = blockNamed(m, d.origin, "blocks", d.blocks[1]);
@@ -493,6 +512,7 @@ Scene buildScene(SceneDefinition s) {
   computeBoundaryGeometry(m);
   for (int b = 0; b < m.blocks.size(); ++b) placeBlockVertices(m, b);
   addFluid(m, s);
+  addStructures(m, s);
 
   for (const BoundaryDefinition& d : s.boundaries) {
     BoundaryCondition condition = resolveBoundary(d, m);

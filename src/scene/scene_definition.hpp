@@ -145,6 +145,36 @@ struct FlowBoundaryDefinition {
   Origin origin;
 };
 
+// A [[beam_material]]: the section's properties as given (per support); the builder divides
+// them by the spacing.
+struct BeamMaterialDefinition {
+  BeamMaterial material;
+  double spacing = 1.0;
+  Origin origin;
+};
+
+// A [[beam]]: a polyline (or an arc) cut into frame elements.
+struct BeamDefinition {
+  std::string name;
+  std::string material;
+  std::vector<Vec2> points;   // the polyline's corners, or the arc's nodes
+  int elements = 1;           // per segment of the polyline; for an arc, in all
+  bool closed = false;
+  bool tied = false;
+  Vec2 load;                  // uniform, N/m per m of beam (per unit thickness)
+  Origin origin;
+};
+
+// A [[beam_node]]: the node of a beam nearest a point, loaded or held.
+struct BeamNodeDefinition {
+  std::string beam;
+  Vec2 point;
+  Vec2 force;
+  double moment = 0.0;
+  std::uint8_t fix = 0;
+  Origin origin;
+};
+
 struct JointAssignmentDefinition {
   std::array<std::string, 2> blocks;
   std::string joint;
@@ -155,6 +185,7 @@ struct HistoryDefinition {
   std::string name;
   std::string quantity;              // as in docs/user-manual/histories.md, e.g. "block.x"
   std::string block;                 // block, gridpoint and zone quantities
+  std::string beam;                  // beam quantities
   std::array<std::string, 2> blocks; // joint quantities
   std::optional<Vec2> point;         // gridpoint and zone quantities
   int every = 1;
@@ -216,6 +247,9 @@ struct SceneDefinition {
   std::vector<InitialWaveDefinition> initialWaves;
   std::optional<FluidDefinition> fluid;
   std::vector<FlowBoundaryDefinition> flowBoundaries;
+  std::vector<BeamMaterialDefinition> beamMaterials;
+  std::vector<BeamDefinition> beams;
+  std::vector<BeamNodeDefinition> beamNodes;
   std::vector<JointAssignmentDefinition> jointAssignments;
   std::vector<HistoryDefinition> histories;
   std::vector<PhaseDefinition> phases;

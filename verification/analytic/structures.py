@@ -600,6 +600,18 @@ def cantilever_lumped_frequencies(*, E, I, rho, A, L, elements, modes=1, rotary_
     return np.sqrt(omega2[:modes]) / (2.0 * math.pi)
 
 
+def cantilever_first_period(*, E, I, rho, A, L):
+    """1 / f_1 (s) of the continuous cantilever (cantilever_frequencies): the form a benchmark that
+    measures the period of a tip history compares with."""
+    return 1.0 / float(cantilever_frequencies(E=E, I=I, rho=rho, A=A, L=L, modes=1)[0])
+
+
+def cantilever_lumped_first_period(*, E, I, rho, A, L, elements, rotary_inertia_ratio=0.0):
+    """1 / f_1 (s) of the discrete cantilever of cantilever_lumped_frequencies."""
+    return 1.0 / float(cantilever_lumped_frequencies(E=E, I=I, rho=rho, A=A, L=L, elements=elements, modes=1,
+                                                     rotary_inertia_ratio=rotary_inertia_ratio)[0])
+
+
 # ================================================================ beam on an elastic (Winkler) foundation
 #
 # EI w'''' + k w = p(x), k the foundation modulus (N/m of deflection per m of beam), w positive into
@@ -715,6 +727,18 @@ def winkler_discrete_beam(*, P, k, E, I, L, elements):
     u = np.linalg.solve(K, f)
     return {"x": np.arange(n + 1) * h - 0.5 * L, "deflection": u[0::2], "rotation": u[1::2],
             "spring_force": springs * u[0::2]}
+
+
+def winkler_discrete_deflection(x, *, P, k, E, I, L, elements):
+    """The nodal deflection of winkler_discrete_beam at the node x (measured from the centre, as its
+    "x"; x must be a node, |x| <= L/2, within 1e-9 L of one), into the foundation: the scalar form
+    a benchmark compares one node with."""
+    beam = winkler_discrete_beam(P=P, k=k, E=E, I=I, L=L, elements=elements)
+    x = _scalar("x", x)
+    node = int(np.argmin(np.abs(beam["x"] - x)))
+    if abs(beam["x"][node] - x) > 1e-9 * L:
+        raise ValueError(f"x = {x}: not a node of the {elements}-element beam (nodes every {L / elements} m from -L/2)")
+    return float(beam["deflection"][node])
 
 
 _WINKLER_MEASURES = ("deflection", "moment")

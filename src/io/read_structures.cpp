@@ -1,0 +1,106 @@
+// [[beam_material]], [[beam]] and [[beam_node]]: rock support by beams (docs/models/support.md).
+#include <cmath>
+#include <numbers>
+
+#include "io/scene_sections.hpp"
+
+namespace vdec {
+
+namespace {
+
+constexpr int kMostElements = 1000000;
+
+BeamMaterialDefinition readBeamMaterial(TableReader& r) {
+  BeamMaterialDefinition d;
+  d.origin = r.origin();
+  BeamMaterial& m = d.material;
+  m.name = r.string("name");
+  m.young = r.positive("young");
+  m.area = r.positive("area");
+  m.inertia = r.positive("inertia");
+  m.density = r.positive("density");
+  d.spacing = r.has("spacing") ? r.positive("spacing") : 1.0;
+  m.tieNormalStiffness = r.nonNegative("tie_normal_stiffness", 0.0);
+  m.tieShearStiffness = r.nonNegative("tie_shear_stiffness", 0.0);
+  if (r.has("tie_cohesion")) m.tieCohesion = r.nonNegative("tie_cohesion", 0.0);
+  m.tieFriction = std::tan(radians(r.angleDegrees("tie_friction", 0.0)));
+  if (r.has("tie_tension")) m.tieTension = r.nonNegative("tie_tension", 0.0);
+  if (r.has("tie_friction") && !r.has("tie_cohesion"))
+    r.fail("tie_friction", "limits the ties' shear with tie_cohesion: give tie_cohesion too (0 for friction alone)");
+  r.finish();
+  return d;
+}
+
+BeamDefinition readBeam(TableReader& r) {
+  BeamDefinition d;
+  d.origin = r.origin();
+  d.name = r.string("name");
+  d.material = r.string("material");
+  if (r.has("points") == r.has("arc"))
+    r.failTable("give the beam's shape as points = [[x, y], ...] (a polyline) or as arc = {...}, one of the two");
+  if (r.has("points")) {
+    d.points = r.polygon("points");
+    d.closed = r.boolean("closed", false);
+    if (d.points.size() < 2) r.fail("points", "needs at least two points");
+    for (std::size_t i = 0; i + 1 < d.points.size(); ++i)
+      if (d.points[i].x == d.points[i + 1].x && d.points[i].y == d.points[i + 1].y) r.fail("points", "point " + std::to_string(i + 1) + " repeats the one before it");
+    if (d.closed && d.points.size() < 3) r.fail("closed", "a closed beam needs at least three points");
+    if (d.closed && d.points.front().x == d.points.back().x && d.points.front().y == d.points.back().y)
+      r.fail("points", "of a closed beam: do not repeat the first point at the end (closed = true joins them)");
+    d.elements = static_cast<int>(r.integer("elements", 1, kMostElements));
+  } else {
+    if (r.has("closed")) r.fail("closed", "an arc is closed when it turns through 360 degrees; remove `closed`");
+    auto t = r.subtable("arc");
+    const Vec2 centre = t->vec2("centre");
+    const double radius = t->positive("radius");
+    const double from = t->number("from"), to = t->number("to");
+    if (!(to > from) || to - from > 360.0) t->fail("to", "must exceed `from` by at most 360 degrees");
+    d.elements = static_cast<int>(t->integer("elements", 1, kMostElements));
+    d.closed = to - from == 360.0;
+    if (d.closed && d.elements < 3) t->fail("elements", "a full ring needs at least 3 elements");
+    const int points = d.closed ? d.elements : d.elements + 1;
+    for (int i = 0; i < points; ++i) {
+      const double a = radians(from + (to - from) * i / d.elements);
+      d.points.push_back(centre + radius * Vec2{std::cos(a), std::sin(a)});
+    }
+    t->finish();
+    d.elements = 1;  // the arc's points are its nodes
+  }
+  d.tied = r.boolean("tied", false);
+  if (r.has("load")) d.load = r.vec2("load");
+  r.finish();
+  return d;
+}
+
+BeamNodeDefinition readBeamNode(TableReader& r) {
+  BeamNodeDefinition d;
+  d.origin = r.origin();
+  d.beam = r.string("beam");
+  d.point = r.vec2("point");
+  if (r.has("force")) d.force = r.vec2("force");
+  d.moment = r.number("moment", 0.0);
+  if (r.has("fix")) d.fix = degreesOfFreedom(r, "fix");
+  if (!r.has("force") && !r.has("moment") && !r.has("fix"))
+    r.failTable("gives the node nothing: give force = [fx, fy], moment or fix = [\"x\", \"y\", \"rotation\"]");
+  r.finish();
+  return d;
+}
+
+}  // namespace
+
+void readStructures(TableReader& top, SceneDefinition& scene) {
+  for (auto [table, prefix] : top.tables("beam_material")) {
+    TableReader r(*table, prefix, top.file());
+    scene.beamMaterials.push_back(readBeamMaterial(r));
+  }
+  for (auto [table, prefix] : top.tables("beam")) {
+    TableReader r(*table, prefix, top.file());
+    scene.beams.push_back(readBeam(r));
+  }
+  for (auto [table, prefix] : top.tables("beam_node")) {
+    TableReader r(*table, prefix, top.file());
+    scene.beamNodes.push_back(readBeamNode(r));
+  }
+}
+
+}  // namespace vdec

@@ -1,0 +1,101 @@
+#pragma once
+// Structural support (NUREG/CR-5429 1.2.6, 1.4.4): beams of 2D frame elements, three degrees of
+// freedom a node (two displacements and a rotation), masses lumped at the nodes, tied to the rock
+// by normal and shear springs. Plain arrays, part of the Model; structure/beams.hpp runs them.
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/vec2.hpp"
+
+namespace vdec {
+
+// A [[beam_material]], per unit thickness: the section's properties over the out-of-plane
+// spacing of the supports (a steel set every 1.5 m carries A / 1.5 per metre of tunnel).
+struct BeamMaterial {
+  std::string name;
+  double young = 0.0;     // E, Pa
+  double area = 0.0;      // A / spacing, m^2 per m
+  double inertia = 0.0;   // I / spacing, m^4 per m
+  double density = 0.0;   // kg/m^3 of the section's material
+  // The ties to the rock, per unit length of beam: springs (N/m per m), Coulomb strength
+  // (cohesion N/m per m, friction tan(phi)) and tensile strength (N/m per m); infinite
+  // strengths leave a tie bonded.
+  double tieNormalStiffness = 0.0;
+  double tieShearStiffness = 0.0;
+  double tieCohesion = INFINITY;
+  double tieFriction = 0.0;
+  double tieTension = INFINITY;
+};
+
+// Beam nodes, structure of arrays.
+struct BeamNodes {
+  std::vector<int> beam;
+  std::vector<Vec2> initialPosition;
+  std::vector<Vec2> position;
+  std::vector<double> rotation;        // radians, counter-clockwise, from the input position
+  std::vector<Vec2> velocity;          // at t - dt/2 before the motion stage, t + dt/2 after
+  std::vector<double> angularVelocity;
+  std::vector<Vec2> force;             // of the elements, summed each step
+  std::vector<double> moment;
+  std::vector<Vec2> tieForce;          // of its tie, each step
+  std::vector<double> forceScale;      // the sum of the sizes of the forces on it this step (for the unbalanced ratio)
+  std::vector<Vec2> appliedForce;      // constant loads
+  std::vector<double> appliedMoment;
+  std::vector<double> mass;            // rho A of half of each element at the node
+  std::vector<double> rotaryInertia;   // mass times the square of the half elements' length / 3 (see beams.cpp)
+  std::vector<double> length;          // tributary: half of each element at the node
+  std::vector<std::uint8_t> fixed;     // DriveX, DriveY, DriveRotation: held at rest
+  int size() const { return static_cast<int>(position.size()); }
+};
+
+// Frame elements between two nodes, structure of arrays; the forces of the last step for output.
+struct BeamElements {
+  std::vector<std::array<int, 2>> node;
+  std::vector<int> beam;
+  std::vector<double> restLength;
+  std::vector<double> restAngle;       // of the chord node 0 -> node 1 at the input position
+  std::vector<double> axialForce;      // N per m, tension positive
+  std::vector<double> shearForce;      // N per m: (M0 + M1) / L, turning the chord counter-clockwise
+  std::vector<std::array<double, 2>> endMoment;  // N m per m that the element exerts on its nodes' rotation, negated
+  int size() const { return static_cast<int>(node.size()); }
+};
+
+// A node's springs to the rock: to a point fixed in a rigid block, or to a point of a zone of a
+// deformable block (by its barycentric weights).
+struct BeamTie {
+  int node = -1;
+  int block = -1;                      // the host block
+  Vec2 local;                          // rigid host: the point relative to the centroid, unrotated
+  int zone = -1;                       // deformable host: the zone and the point's weights in it
+  std::array<double, 3> weight{};
+  Vec2 force;                          // on the node, N per m (the host gets its opposite)
+  double normalStiffness = 0.0;        // k_n times the node's length, N/m per m
+  double shearStiffness = 0.0;
+  double cohesion = INFINITY;          // times the node's length
+  double friction = 0.0;
+  double tension = INFINITY;           // times the node's length
+  bool broken = false;                 // pulled off beyond its tensile strength: no force from then on
+  bool slipping = false;               // at its shear strength in the last step
+};
+
+struct Beam {
+  std::string name;
+  int material = -1;
+  int firstNode = 0, nodeCount = 0;
+  int firstElement = 0, elementCount = 0;
+  bool closed = false;                 // a ring: the last node joined to the first
+};
+
+struct Structures {
+  std::vector<BeamMaterial> materials;
+  std::vector<Beam> beams;
+  BeamNodes nodes;
+  BeamElements elements;
+  std::vector<BeamTie> ties;
+  bool any() const { return !beams.empty(); }
+};
+
+}  // namespace vdec
