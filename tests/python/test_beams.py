@@ -1,0 +1,177 @@
+"""Beams through a scene (docs/models/support.md, docs/user-manual/scene-format.md#beam): the scene
+errors of their keys, ties to a deformable block, self-weight, a restart across phases and the
+independence of the thread count."""
+import json
+import os
+import re
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+VDEC = os.environ.get("VDEC_EXECUTABLE", str(ROOT / "build" / "vdec"))
+pytestmark = pytest.mark.skipif(not Path(VDEC).is_file(), reason="vdec is not built")
+
+
+def run(tmp_path, text, *extra, name="scene"):
+    scene = tmp_path / f"{name}.toml"
+    scene.write_text(text)
+    out = tmp_path / f"{name}-out"
+    done = subprocess.run([VDEC, "run", str(scene), "--out", str(out), *extra], capture_output=True, text=True,
+                          timeout=120)
+    results = out / "results.json"
+    return done, json.loads(results.read_text()) if results.is_file() else None
+
+
+# A beam lying on a base block, tied to it; a point load at its middle.
+BASE = """[model]
+rounding = 0.01
+gravity = [0.0, 0.0]
+[solver]
+local_damping = 0.8
+[stop]
+ratio = 1e-6
+cycles = 100000
+[[joint_material]]
+name = "j"
+kn = 1e10
+ks = 1e10
+[[block_material]]
+name = "rock"
+density = 2500.0
+young = 10e9
+poisson = 0.25
+[[block]]
+name = "base"
+material = "rock"
+vertices = [[-0.5, -1.0], [2.5, -1.0], [2.5, 0.0], [-0.5, 0.0]]
+fix = ["x", "y", "rotation"]
+[[beam_material]]
+name = "steel"
+young = 200e9
+area = 0.01
+inertia = 1e-5
+density = 7850.0
+tie_normal_stiffness = 1e8
+tie_shear_stiffness = 1e8
+[[beam]]
+name = "b"
+material = "steel"
+points = [[0.0, 0.0], [2.0, 0.0]]
+elements = 8
+tied = true
+[[beam_node]]
+beam = "b"
+point = [1.0, 0.0]
+force = [0.0, -1000.0]
+[[history]]
+name = "m"
+quantity = "beam.moment"
+beam = "b"
+point = [1.001, 0.0]
+"""
+
+# (what is wrong, the scene, the key the message must name, a phrase of the message)
+BAD = [
+    ("no young", BASE.replace("young = 200e9\n", ""), "young", "is required"),
+    ("negative area", BASE.replace("area = 0.01", "area = -0.01"), "area", "> 0"),
+    ("zero spacing", BASE.replace("density = 7850.0", "density = 7850.0\nspacing = 0.0"), "spacing", "> 0"),
+    ("friction without cohesion", BASE.replace("tie_shear_stiffness = 1e8", "tie_shear_stiffness = 1e8\ntie_friction = 30.0"),
+     "tie_friction", "give tie_cohesion too"),
+    ("unknown material", BASE.replace('material = "steel"', 'material = "iron"'), "material", "no [[beam_material]] is named 'iron'"),
+    ("points and arc", BASE.replace("elements = 8\n", "elements = 8\narc = { centre = [0.0, 0.0], radius = 1.0, from = 0.0, to = 90.0, elements = 4 }\n"),
+     "beam", "one of the two"),
+    ("one point", BASE.replace("points = [[0.0, 0.0], [2.0, 0.0]]", "points = [[0.0, 0.0]]"), "points", "at least two points"),
+    ("repeated point", BASE.replace("points = [[0.0, 0.0], [2.0, 0.0]]", "points = [[0.0, 0.0], [0.0, 0.0], [2.0, 0.0]]"),
+     "points", "repeats the one before it"),
+    ("zero elements", BASE.replace("elements = 8\n", "elements = 0\n"), "elements", "must be an integer in [1,"),
+    ("arc backwards", BASE.replace("points = [[0.0, 0.0], [2.0, 0.0]]\nelements = 8\n",
+                                   "arc = { centre = [1.0, 1.0], radius = 1.0, from = 90.0, to = 0.0, elements = 4 }\n"),
+     "to", "must exceed `from`"),
+    ("tied without springs", BASE.replace("tie_normal_stiffness = 1e8\n", ""), "tied", "gives no tie springs"),
+    ("tied off the rock", BASE.replace("points = [[0.0, 0.0], [2.0, 0.0]]", "points = [[0.0, 0.5], [2.0, 0.5]]"), "tied",
+     "lies on no block"),
+    ("two beams of one name", BASE + '[[beam]]\nname = "b"\nmaterial = "steel"\npoints = [[0.0, 0.0], [1.0, 0.0]]\nelements = 1\n', "name",
+     "is defined twice"),
+    ("node of no beam", BASE.replace('beam = "b"\npoint = [1.0, 0.0]\nforce', 'beam = "c"\npoint = [1.0, 0.0]\nforce'), "beam",
+     "no [[beam]] is named 'c'"),
+    ("node given nothing", BASE.replace("force = [0.0, -1000.0]\n", ""), "beam_node", "gives the node nothing"),
+    ("unknown dof", BASE.replace("force = [0.0, -1000.0]", 'fix = ["z"]'), "fix", "unknown degree of freedom"),
+    ("history of no beam", BASE.replace('beam = "b"\npoint = [1.001, 0.0]', 'beam = "x"\npoint = [1.001, 0.0]'), "beam",
+     "no [[beam]] is named 'x'"),
+    ("history without a point", BASE.replace('beam = "b"\npoint = [1.001, 0.0]\n', 'beam = "b"\n'), "point",
+     "is required"),
+    ("unknown beam key", BASE.replace("tied = true", "tied = true\nthickness = 0.2"), "thickness", "unknown"),
+]
+
+
+@pytest.mark.requirements("REQ-STRUCT-005")
+@pytest.mark.parametrize("what, text, key, phrase", BAD, ids=[b[0] for b in BAD])
+def test_bad_beam_input_is_a_scene_error_naming_the_key(tmp_path, what, text, key, phrase):
+    done, _ = run(tmp_path, text)
+    assert done.returncode == 3, (what, done.stderr)
+    assert key in done.stderr and phrase in done.stderr, (what, done.stderr)
+    assert re.search(r"scene\.toml:\d+", done.stderr), ("the message names the file and line", done.stderr)
+
+
+@pytest.mark.requirements("REQ-STRUCT-003")
+def test_a_beam_tied_to_a_deformable_block_loads_its_gridpoints_with_the_ties_reaction(tmp_path):
+    # The base zoned: the ties hold points of its zones. At rest the ties carry the load (statics),
+    # and the stiff base barely moves, so the beam bends nearly as on the rigid base.
+    zoned = BASE.replace('fix = ["x", "y", "rotation"]', "zoning = { nx = 12, ny = 4 }")
+    zoned += '[[boundary]]\nblock = "base"\ny = [-1.0, -1.0]\nfix = ["x", "y"]\n'
+    done, results = run(tmp_path, zoned.replace("young = 10e9", "young = 1e13"), name="zoned")
+    assert done.returncode == 0, done.stderr
+    ties = results["beams"]["ties"]
+    assert all(z >= 0 for z in ties["zone"]), "every tie holds a zone's point"
+    assert sum(ties["force_y"]) == pytest.approx(1000.0, rel=1e-5)
+    done, rigid = run(tmp_path, BASE, name="rigid")
+    assert all(z == -1 for z in rigid["beams"]["ties"]["zone"])
+    centre = results["beams"]["nodes"]["displacement_y"][4]
+    assert centre == pytest.approx(rigid["beams"]["nodes"]["displacement_y"][4], rel=2e-3)
+    assert results["histories"]["m"]["value"][-1] == pytest.approx(rigid["histories"]["m"]["value"][-1], rel=2e-3)
+
+
+@pytest.mark.requirements("REQ-STRUCT-002")
+def test_an_untied_beam_on_two_supports_carries_its_own_weight(tmp_path):
+    # Self-weight: rho A g per unit length, lumped; the supports' reactions are not output, but
+    # the midspan moment is statics, w L^2 / 8 with w = rho A g, exact for the lumped load.
+    text = BASE.replace("gravity = [0.0, 0.0]", "gravity = [0.0, -9.81]").replace("tied = true\n", "")
+    text = text.replace('[[beam_node]]\nbeam = "b"\npoint = [1.0, 0.0]\nforce = [0.0, -1000.0]\n',
+                        '[[beam_node]]\nbeam = "b"\npoint = [0.0, 0.0]\nfix = ["x", "y"]\n'
+                        '[[beam_node]]\nbeam = "b"\npoint = [2.0, 0.0]\nfix = ["y"]\n')
+    text = text.replace("point = [1.001, 0.0]", "point = [1.0, 0.0]")  # the midspan node
+    done, results = run(tmp_path, text.replace("ratio = 1e-6", "ratio = 1e-7"))
+    assert done.returncode == 0, done.stderr
+    w = 7850.0 * 0.01 * 9.81
+    assert results["histories"]["m"]["value"][-1] == pytest.approx(w * 2.0 ** 2 / 8.0, rel=1e-6)
+    assert sum(results["beams"]["nodes"]["mass"]) == pytest.approx(7850.0 * 0.01 * 2.0, rel=1e-14)
+
+
+PHASES = '[[phase]]\nname = "one"\nstop = { cycles = 300 }\n[[phase]]\nname = "two"\nstop = { cycles = 300 }\n'
+
+
+@pytest.mark.requirements("REQ-STRUCT-001")
+def test_a_run_restarted_with_beams_is_the_run_that_did_not_stop(tmp_path):
+    text = BASE.replace("[stop]\nratio = 1e-6\ncycles = 100000\n", "") + PHASES
+    done, whole = run(tmp_path, text, "--save", "one", name="whole")
+    assert done.returncode == 0, done.stderr
+    state = tmp_path / "whole-out" / "after-phase-1.vdecstate"
+    resumed = subprocess.run([VDEC, "run", str(tmp_path / "whole.toml"), "--out", str(tmp_path / "resumed"),
+                              "--restart", str(state)], capture_output=True, text=True, timeout=120)
+    assert resumed.returncode == 0, resumed.stderr
+    again = json.loads((tmp_path / "resumed" / "results.json").read_text())
+    for key in ("beams", "histories", "energy"):
+        assert again[key] == whole[key], key
+
+
+@pytest.mark.requirements("REQ-STRUCT-001")
+def test_beam_results_do_not_depend_on_the_thread_count(tmp_path):
+    zoned = BASE.replace('fix = ["x", "y", "rotation"]', "zoning = { nx = 12, ny = 4 }")
+    zoned += '[[boundary]]\nblock = "base"\ny = [-1.0, -1.0]\nfix = ["x", "y"]\n'
+    one, a = run(tmp_path, zoned, "--threads", "1", name="one")
+    two, b = run(tmp_path, zoned, "--threads", "2", name="two")
+    assert one.returncode == 0 and two.returncode == 0, (one.stderr, two.stderr)
+    for key in ("beams", "gridpoints", "histories"):
+        assert a[key] == b[key], key
