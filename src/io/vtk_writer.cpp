@@ -13,7 +13,7 @@ namespace vdec {
 namespace {
 
 // VTK cell types.
-constexpr int kVertex = 1, kTriangle = 5, kPolygon = 7;
+constexpr int kVertex = 1, kLine = 3, kTriangle = 5, kPolygon = 7;
 
 struct Grid {
   std::vector<Vec2> points;
@@ -22,11 +22,13 @@ struct Grid {
   // Point data: displacement and velocity (rigid block vertices take their block's).
   std::vector<Vec2> displacement, velocity;
   // Cell data.
-  std::vector<int> kind;  // 0 zone, 1 rigid block, 2 contact, 3 fluid domain, 4 flow knot
+  std::vector<int> kind;  // 0 zone, 1 rigid block, 2 contact, 3 fluid domain, 4 flow knot, 5 beam element
   std::vector<int> block;
   std::vector<double> sxx, syy, sxy, szz, normalForce, shearForce;
   bool fluid = false;  // the fluid's arrays below, with [fluid] only
   std::vector<double> pressure, area, flow, aperture;
+  bool beams = false;  // the beams' arrays below, with beams only
+  std::vector<double> axialForce, beamShear, moment0, moment1;
 };
 
 void cellDefaults(Grid& g, int kind, int block) {
@@ -35,6 +37,8 @@ void cellDefaults(Grid& g, int kind, int block) {
   for (auto* v : {&g.sxx, &g.syy, &g.sxy, &g.szz, &g.normalForce, &g.shearForce}) v->push_back(0.0);
   if (g.fluid)
     for (auto* v : {&g.pressure, &g.area, &g.flow, &g.aperture}) v->push_back(0.0);
+  if (g.beams)
+    for (auto* v : {&g.axialForce, &g.beamShear, &g.moment0, &g.moment1}) v->push_back(0.0);
 }
 
 // A vertex cell at `at`, of no displacement or velocity.
@@ -50,6 +54,7 @@ void pointCell(Grid& g, Vec2 at, int kind, int block) {
 Grid collect(const Model& m) {
   Grid g;
   g.fluid = m.flow.present;
+  g.beams = m.structures.any();
   const Gridpoints& gp = m.gridpoints;
   for (int i = 0; i < gp.size(); ++i) {
     g.points.push_back(gp.position[i]);
@@ -95,6 +100,24 @@ Grid collect(const Model& m) {
     pointCell(g, k.point, 4, k.blockA);
     g.flow.back() = k.flow;
     g.aperture.back() = k.aperture;
+  }
+  // Beam elements: lines between their nodes (block -1); the nodes carry their displacement and velocity.
+  const BeamNodes& nd = m.structures.nodes;
+  const int firstNode = static_cast<int>(g.points.size());
+  for (int i = 0; i < nd.size(); ++i) {
+    g.points.push_back(nd.position[i]);
+    g.displacement.push_back(nd.position[i] - nd.initialPosition[i]);
+    g.velocity.push_back(nd.velocity[i]);
+  }
+  const BeamElements& el = m.structures.elements;
+  for (int e = 0; e < el.size(); ++e) {
+    g.cells.push_back({firstNode + el.node[e][0], firstNode + el.node[e][1]});
+    g.types.push_back(kLine);
+    cellDefaults(g, 5, -1);
+    g.axialForce.back() = el.axialForce[e];
+    g.beamShear.back() = el.shearForce[e];
+    g.moment0.back() = el.endMoment[e][0];
+    g.moment1.back() = el.endMoment[e][1];
   }
   return g;
 }
@@ -178,9 +201,9 @@ void VtkSeries::write(const Model& m) {
   vectorArray(out, "displacement", g.displacement);
   vectorArray(out, "velocity", g.velocity);
   out << "</PointData>\n<CellData>\n";
-  dataArray(out, g.fluid ? "kind (0 zone, 1 rigid block, 2 contact, 3 fluid domain, 4 flow knot)"
-                         : "kind (0 zone, 1 rigid block, 2 contact)",
-            g.kind, "Int32");
+  const std::string kinds = std::string("kind (0 zone, 1 rigid block, 2 contact") +
+                            (g.fluid ? ", 3 fluid domain, 4 flow knot" : "") + (g.beams ? ", 5 beam element" : "") + ")";
+  dataArray(out, kinds.c_str(), g.kind, "Int32");
   dataArray(out, "block", g.block, "Int32");
   dataArray(out, "sxx", g.sxx, "Float64");
   dataArray(out, "syy", g.syy, "Float64");
@@ -193,6 +216,12 @@ void VtkSeries::write(const Model& m) {
     dataArray(out, "domain_area", g.area, "Float64");
     dataArray(out, "flow", g.flow, "Float64");
     dataArray(out, "aperture", g.aperture, "Float64");
+  }
+  if (g.beams) {
+    dataArray(out, "axial_force", g.axialForce, "Float64");
+    dataArray(out, "beam_shear_force", g.beamShear, "Float64");
+    dataArray(out, "moment_0", g.moment0, "Float64");
+    dataArray(out, "moment_1", g.moment1, "Float64");
   }
   out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
   file.commit();

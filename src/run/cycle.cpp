@@ -380,8 +380,10 @@ void Cycle::recordHistories(bool initial) {
     // Positions are those just reached; zone stresses, joints and model measures were formed in
     // this step from the positions at its start.
     // The fluid's state is that the step's flow stage left, after the motion, at `time` too.
+    const bool beamPosition = h.quantity == HistoryQuantity::BeamDisplacementX ||
+                              h.quantity == HistoryQuantity::BeamDisplacementY || h.quantity == HistoryQuantity::BeamRotation;
     const bool block = subject == HistorySubject::Block || subject == HistorySubject::Gridpoint ||
-                       subject == HistorySubject::Fluid;
+                       subject == HistorySubject::Fluid || beamPosition;
     if (initial && !block) continue;
     if (initial) series.sampledAtCycleZero = true;
     const bool halved = appendHistorySample(series, block || initial ? model_.time : model_.time - dt_,
@@ -506,6 +508,13 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
       removed += 0.5 * g.mass[i] * (dot(v, v) - dot(kept, kept));
       v = kept;
     }
+    BeamNodes& nd = model_.structures.nodes;
+    for (int i = 0; i < nd.size(); ++i) {
+      removed += 0.5 * (nd.mass[i] * dot(nd.velocity[i], nd.velocity[i]) +
+                        nd.rotaryInertia[i] * nd.angularVelocity[i] * nd.angularVelocity[i]);
+      nd.velocity[i] = {};
+      nd.angularVelocity[i] = 0.0;
+    }
     energy_.withdraw(removed);
   }
   if (changes.resetDisplacements) {
@@ -514,6 +523,10 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
       bl.rotation[b] = 0.0;
     }
     for (int i = 0; i < g.size(); ++i) g.initialPosition[i] = g.position[i];
+    // Beam nodes' displacements from here; their rotations stay measured from the input (the
+    // elements' bending is reckoned from them).
+    BeamNodes& nd = model_.structures.nodes;
+    for (int i = 0; i < nd.size(); ++i) nd.initialPosition[i] = nd.position[i];
   }
   if (changes.staticSolve) solveDirectly();
 }
@@ -614,6 +627,15 @@ void Cycle::excavate(const ExcavationRegion& region) {
                        "': give the history a point in a zone that stays");
     h.zone = done.newIndex[h.zone];
   }
+  // A tie whose zone is dug out holds nothing any more; the others follow their zone's new number.
+  for (BeamTie& t : model_.structures.ties) {
+    if (t.zone < 0 || t.broken) continue;
+    t.zone = done.newIndex[t.zone];
+    if (t.zone < 0) {
+      t.broken = true;
+      t.force = {};
+    }
+  }
   if (settings_.densityScaling) {
     Gridpoints& g = model_.gridpoints;
     for (int i = 0; i < g.size(); ++i)
@@ -638,6 +660,11 @@ void Cycle::excavateRigidBlocks(const ExcavationRegion& region) {
   if (!anyLeft)
     throw SceneError(region.where + " removes every block when the phase starts (the blocks have moved into it): "
                                     "the model would be empty; give the excavation a smaller region");
+  for (BeamTie& t : model_.structures.ties)
+    if (t.zone < 0 && !t.broken && std::find(gone.begin(), gone.end(), t.block) != gone.end()) {
+      t.broken = true;
+      t.force = {};
+    }
   // Its motion and the elastic energy of its joints leave the model without work; its contacts
   // go with a rescan, which no longer pairs it with anything.
   double removed = 0.0;

@@ -114,6 +114,10 @@ void addStructures(Model& m, const SceneDefinition& s) {
     Beam beam{d.name, material, nd.size(), 0, el.size(), 0, d.closed};
     const int index = static_cast<int>(st.beams.size());
     const int segments = static_cast<int>(d.points.size()) - (d.closed ? 0 : 1);
+    if (static_cast<double>(segments) * d.elements + nd.size() > 1e6)
+      d.origin.fail("elements", "beam '" + d.name + "' would bring the beams' nodes past 1e6 (" +
+                                    std::to_string(segments) + " segments of " + std::to_string(d.elements) +
+                                    " elements): use fewer elements");
     for (int k = 0; k < segments; ++k) {
       const Vec2 a = d.points[k], b = d.points[(k + 1) % d.points.size()];
       for (int i = 0; i < d.elements; ++i) addNode(index, a + (static_cast<double>(i) / d.elements) * (b - a));
@@ -169,6 +173,11 @@ void addStructures(Model& m, const SceneDefinition& s) {
     int node = b.firstNode;
     for (int n = b.firstNode; n < b.firstNode + b.nodeCount; ++n)
       if (norm(nd.position[n] - d.point) < norm(nd.position[node] - d.point)) node = n;
+    double longest = 0.0;
+    for (int e = b.firstElement; e < b.firstElement + b.elementCount; ++e) longest = std::max(longest, el.restLength[e]);
+    if (norm(nd.position[node] - d.point) > 0.5 * longest)
+      d.origin.fail("point", "lies " + shown(norm(nd.position[node] - d.point)) + " m from the nearest node of beam '" +
+                                 d.beam + "', more than half its longest element: give a point on the beam");
     nd.appliedForce[node] += d.force;
     nd.appliedMoment[node] += d.moment;
     nd.fixed[node] |= d.fix;

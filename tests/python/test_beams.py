@@ -97,6 +97,8 @@ BAD = [
     ("node of no beam", BASE.replace('beam = "b"\npoint = [1.0, 0.0]\nforce', 'beam = "c"\npoint = [1.0, 0.0]\nforce'), "beam",
      "no [[beam]] is named 'c'"),
     ("node given nothing", BASE.replace("force = [0.0, -1000.0]\n", ""), "beam_node", "gives the node nothing"),
+    ("node far from the beam", BASE.replace("point = [1.0, 0.0]\nforce", "point = [1.0, 5.0]\nforce"), "point",
+     "from the nearest node of beam 'b'"),
     ("unknown dof", BASE.replace("force = [0.0, -1000.0]", 'fix = ["z"]'), "fix", "unknown degree of freedom"),
     ("history of no beam", BASE.replace('beam = "b"\npoint = [1.001, 0.0]', 'beam = "x"\npoint = [1.001, 0.0]'), "beam",
      "no [[beam]] is named 'x'"),
@@ -175,3 +177,61 @@ def test_beam_results_do_not_depend_on_the_thread_count(tmp_path):
     assert one.returncode == 0 and two.returncode == 0, (one.stderr, two.stderr)
     for key in ("beams", "gridpoints", "histories"):
         assert a[key] == b[key], key
+
+
+@pytest.mark.requirements("REQ-STRUCT-004")
+def test_vtk_snapshots_hold_the_beam_elements_of_results_json(tmp_path):
+    import xml.etree.ElementTree as ET
+    done, results = run(tmp_path, BASE + "\n[output]\nvtk_every = 100000\n")
+    assert done.returncode == 0, done.stderr
+    last = sorted((tmp_path / "scene-out" / "vtk").glob("snapshot_*.vtu"))[-1]
+    piece = ET.parse(last).getroot().find("UnstructuredGrid/Piece")
+    arrays = {a.get("Name"): [float(x) for x in (a.text or "").split()] for a in piece.iter("DataArray")}
+    kind_name = next(name for name in arrays if name.startswith("kind"))
+    assert "5 beam element" in kind_name
+    kind = arrays[kind_name]
+    beams = [i for i, k in enumerate(kind) if k == 5]
+    elements = results["beams"]["elements"]
+    assert len(beams) == len(elements["axial_force"]) == 8
+    assert [arrays["axial_force"][i] for i in beams] == elements["axial_force"]
+    assert [arrays["moment_0"][i] for i in beams] == elements["moment_0"]
+    assert [arrays["moment_1"][i] for i in beams] == elements["moment_1"]
+    assert [arrays["beam_shear_force"][i] for i in beams] == elements["shear_force"]
+    # line cells (VTK type 3) between the nodes' points, which carry their displacement
+    assert [arrays["types"][i] for i in beams] == [3.0] * 8
+    connectivity, offsets = arrays["connectivity"], arrays["offsets"]
+    first = beams[0]
+    start = int(offsets[first - 1]) if first > 0 else 0
+    node0 = int(connectivity[start])
+    points = arrays["position"]
+    displacement = arrays["displacement"]
+    assert points[3 * node0] == pytest.approx(results["beams"]["nodes"]["x0"][0] + results["beams"]["nodes"]["displacement_x"][0], abs=1e-15)
+    assert displacement[3 * node0 + 1] == results["beams"]["nodes"]["displacement_y"][0]
+
+
+@pytest.mark.requirements("REQ-STRUCT-003")
+def test_an_excavation_breaks_the_ties_to_the_zones_it_removes_and_renumbers_the_others(tmp_path):
+    zoned = BASE.replace('fix = ["x", "y", "rotation"]', "zoning = { nx = 12, ny = 4 }")
+    zoned = zoned.replace("[stop]\nratio = 1e-6\ncycles = 100000\n", "")
+    zoned += '[[boundary]]\nblock = "base"\ny = [-1.0, -1.0]\nfix = ["x", "y"]\n'
+    zoned += ('[[phase]]\nname = "load"\nstop = { cycles = 200 }\n'
+              '[[phase]]\nname = "dig"\nstop = { cycles = 200 }\n'
+              '[[phase.excavation]]\npolygon = [[-1.0, -0.6], [0.6, -0.6], [0.6, 0.1], [-1.0, 0.1]]\n')
+    done, results = run(tmp_path, zoned)
+    assert done.returncode == 0, done.stderr
+    ties, nodes = results["beams"]["ties"], results["beams"]["nodes"]
+    zones = len(results["zones"]["sxx"])
+    for zone, broken, node in zip(ties["zone"], ties["broken"], ties["node"]):
+        assert zone < zones, "a tie names a zone that exists"
+        dug = nodes["x0"][node] < 0.5
+        assert bool(broken) == dug, (nodes["x0"][node], zone, broken)
+
+
+@pytest.mark.requirements("REQ-STRUCT-004")
+def test_beam_position_histories_are_sampled_from_the_start_and_forces_a_step_behind(tmp_path):
+    text = BASE + ('[[history]]\nname = "w"\nquantity = "beam.displacement_y"\nbeam = "b"\npoint = [1.0, 0.0]\n')
+    done, results = run(tmp_path, text.replace("ratio = 1e-6", "ratio = 1e-3"))
+    assert done.returncode == 0, done.stderr
+    w, m = results["histories"]["w"], results["histories"]["m"]
+    assert w["t"][0] == 0.0 and w["value"][0] == 0.0, "the input position, at t = 0"
+    assert len(w["t"]) == len(m["t"]) + 1 and w["t"][1:] == [t + (w["t"][1] - 0.0) for t in m["t"]]
