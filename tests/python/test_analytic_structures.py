@@ -833,6 +833,7 @@ def test_grout_bond_laws():
         st.grout_bond_strength(D=D, t=t, tau_peak=-1.0)
 
 
+@REQ
 def test_winkler_discrete_deflection_is_the_discrete_beams_node():
     beam = st.winkler_discrete_beam(P=1000.0, k=1e8, E=200e9, I=1e-5, L=4.0, elements=32)
     for node in (0, 8, 16, 32):
@@ -842,6 +843,7 @@ def test_winkler_discrete_deflection_is_the_discrete_beams_node():
         st.winkler_discrete_deflection(0.01, P=1000.0, k=1e8, E=200e9, I=1e-5, L=4.0, elements=32)
 
 
+@REQ
 def test_first_periods_are_the_inverse_first_frequencies():
     args = dict(E=200e9, I=1e-5, rho=7850.0, A=0.01, L=2.0)
     assert st.cantilever_first_period(**args) * st.cantilever_frequencies(**args)[0] == pytest.approx(1.0, rel=1e-15, abs=0)
