@@ -72,7 +72,7 @@ void visitState(A& a, BeamMaterial& b) {
 }
 template <class A>
 void visitState(A& a, Beam& b) {
-  a(b.name), a(b.material), a(b.firstNode), a(b.nodeCount), a(b.firstElement), a(b.elementCount), a(b.closed);
+  a(b.name), a(b.material), a(b.firstNode), a(b.nodeCount), a(b.firstElement), a(b.elementCount), a(b.closed), a(b.tied), a(b.installed);
 }
 template <class A>
 void visitState(A& a, Structures& s) {

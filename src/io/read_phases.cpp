@@ -103,6 +103,14 @@ PhaseDefinition readPhase(TableReader& r, std::vector<std::string>& warnings) {
     d.boundaries.push_back(readBoundary(t));
     t.finish();
   }
+  for (auto [table, prefix] : r.tables("beam")) {
+    TableReader t(*table, prefix, r.file());
+    d.beams.push_back(readBeam(t));
+  }
+  for (auto [table, prefix] : r.tables("beam_node")) {
+    TableReader t(*table, prefix, r.file());
+    d.beamNodes.push_back(readBeamNode(t));
+  }
   if (r.has("flow")) d.flow = r.boolean("flow", true);
   for (auto [table, prefix] : r.tables("flow_boundary")) {
     TableReader t(*table, prefix, r.file());

@@ -31,6 +31,8 @@ BeamMaterialDefinition readBeamMaterial(TableReader& r) {
   return d;
 }
 
+}  // namespace
+
 BeamDefinition readBeam(TableReader& r) {
   BeamDefinition d;
   d.origin = r.origin();
@@ -85,8 +87,6 @@ BeamNodeDefinition readBeamNode(TableReader& r) {
   r.finish();
   return d;
 }
-
-}  // namespace
 
 void readStructures(TableReader& top, SceneDefinition& scene) {
   for (auto [table, prefix] : top.tables("beam_material")) {

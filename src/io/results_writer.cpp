@@ -131,8 +131,13 @@ void writeStructures(nlohmann::json& j, const Model& m) {
     slipping.push_back(t.slipping);
   }
   std::vector<std::string> names;
-  for (const Beam& b : st.beams) names.push_back(b.name);
+  std::vector<int> installed;
+  for (const Beam& b : st.beams) {
+    names.push_back(b.name);
+    installed.push_back(b.installed);
+  }
   j["beams"] = {{"names", names},
+                {"installed", installed},
                 {"nodes", {{"beam", nd.beam}, {"x0", x0}, {"y0", y0}, {"displacement_x", ux}, {"displacement_y", uy},
                            {"rotation", rotation}, {"mass", mass}}},
                 {"elements", {{"beam", el.beam}, {"node_0", node0}, {"node_1", node1}, {"x0", cx0}, {"y0", cy0},

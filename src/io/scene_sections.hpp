@@ -50,8 +50,11 @@ void readHistories(TableReader& top, SceneDefinition& scene);
 // [fluid] and [[flow_boundary]]; the fluid keys of a [[joint_material]].
 void readFluid(TableReader& top, SceneDefinition& scene);
 
-// [[beam_material]], [[beam]], [[beam_node]] (read_structures.cpp).
+// [[beam_material]], [[beam]], [[beam_node]] (read_structures.cpp); a [[beam]] or [[beam_node]]
+// table alone, for a phase's.
 void readStructures(TableReader& top, SceneDefinition& scene);
+BeamDefinition readBeam(TableReader& r);
+BeamNodeDefinition readBeamNode(TableReader& r);
 FlowBoundaryDefinition readFlowBoundary(TableReader& r);
 void readJointFlowKeys(TableReader& r, JointMaterial& joint);
 

@@ -1,6 +1,7 @@
 #include "run/cycle.hpp"
 
 #include "flow/fracture_flow.hpp"
+#include "structure/beams.hpp"
 
 #include <unistd.h>
 
@@ -417,7 +418,7 @@ bool Cycle::stopReached(const StopCriteria& s, long long startCycle, double star
   return false;
 }
 
-void Cycle::beginPhase(const PhaseChanges& changes) {
+void Cycle::beginPhase(const PhaseChanges& changes, const std::string& phaseName) {
   if (changes.gravity) model_.gravity = *changes.gravity;
   for (const JointStrengthChange& change : changes.joints) {
     JointMaterial& j = model_.jointMaterials[change.material];
@@ -463,6 +464,20 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
   for (FlowBoundary b : changes.flowBoundaries) {
     b.timeOrigin = model_.time;
     model_.flow.boundaries.push_back(b);
+  }
+  // Beams: those freed taken out (their energy leaves without work), then those installed placed
+  // where the rock is now, then the loads and holds; their step may only shrink the step.
+  for (const int beam : changes.freeBeams) energy_.withdraw(removeBeam(model_, beam));
+  for (const int beam : changes.installBeams) installBeam(model_, beam, "phase '" + phaseName + "'");
+  for (const PhaseChanges::BeamNodeChange& change : changes.beamNodes) {
+    BeamNodes& nd = model_.structures.nodes;
+    nd.appliedForce[change.node] += change.force;
+    nd.appliedMoment[change.node] += change.moment;
+    nd.fixed[change.node] |= change.fix;
+  }
+  if (!changes.installBeams.empty()) {
+    undampedStep_ = std::min(undampedStep_, stepLimitOf("structures"));
+    dt_ = std::min(dt_, dampedStep(undampedStep_));
   }
   if (changes.flow && *changes.flow != flowing) {
     model_.flow.on = *changes.flow;
@@ -518,8 +533,20 @@ void Cycle::beginPhase(const PhaseChanges& changes) {
     energy_.withdraw(removed);
   }
   if (changes.resetDisplacements) {
+    // A rigid block's rotation counts from here: its shape's local frame turns to where the block
+    // stands, so that the block itself does not move (and ties held in that frame turn with it).
+    Vertices& vx = model_.vertices;
     for (int b = 0; b < bl.size(); ++b) {
       bl.initialCentroid[b] = bl.centroid[b];
+      if (bl.deformable[b] || bl.rotation[b] == 0.0) continue;
+      const double c = std::cos(bl.rotation[b]), s = std::sin(bl.rotation[b]);
+      for (int v = bl.firstVertex[b]; v < bl.firstVertex[b] + bl.vertexCount[b]; ++v) {
+        vx.localPosition[v] = rotated(vx.localPosition[v], c, s);
+        vx.localArcCentre[v] = rotated(vx.localArcCentre[v], c, s);
+        vx.localEdgeDirection[v] = rotated(vx.localEdgeDirection[v], c, s);
+      }
+      for (BeamTie& t : model_.structures.ties)
+        if (t.zone < 0 && t.block == b) t.local = rotated(t.local, c, s);
       bl.rotation[b] = 0.0;
     }
     for (int i = 0; i < g.size(); ++i) g.initialPosition[i] = g.position[i];
@@ -765,7 +792,7 @@ RunReport Cycle::run() {
         done.name = phase.name;
         done.startCycle = model_.cycle;
         done.startTime = model_.time;
-        beginPhase(phase.changes);
+        beginPhase(phase.changes, phase.name);
         restartAccelerations();
         checkDamping(alpha_, "phase '" + phase.name + "': mass_damping");
         stepUntil(phase.stop, done.stopReason);

@@ -113,7 +113,7 @@ class Cycle {
   void restartAccelerations();
   bool stopReached(const StopCriteria& s, long long startCycle, double startTime, std::string& reason) const;
   void stepUntil(const StopCriteria& stop, std::string& reason);
-  void beginPhase(const PhaseChanges& changes);
+  void beginPhase(const PhaseChanges& changes, const std::string& phaseName);
   void checkDamping(double alpha, const std::string& where) const;
   void warnHalved(const HistorySpec& h, const HistorySeries& series) const;
   // A step formed without damping, reduced for local and stiffness-proportional damping.

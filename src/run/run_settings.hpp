@@ -53,6 +53,15 @@ struct PhaseChanges {
   bool staticSolve = false;  // after the changes, solve the elastic zones' equilibrium directly
   std::optional<bool> flow;  // fluid flow switched on (its domains from the initial field) or off
   std::vector<FlowBoundary> flowBoundaries;  // flow boundaries added, their histories from the phase's start
+  std::vector<int> freeBeams;                 // beams taken out at the phase's start (indices)
+  std::vector<int> installBeams;              // then installed, stress-free where the rock is then
+  struct BeamNodeChange {
+    int node = -1;
+    Vec2 force;
+    double moment = 0.0;
+    std::uint8_t fix = 0;
+  };
+  std::vector<BeamNodeChange> beamNodes;      // loads added and degrees of freedom held
 };
 
 struct Phase {

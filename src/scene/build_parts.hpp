@@ -37,6 +37,15 @@ FlowBoundary flowBoundary(Model& model, const FlowBoundaryDefinition& definition
 
 // The beams, their materials, nodes and ties to the rock into the model (after the blocks).
 void addStructures(Model& model, const SceneDefinition& scene);
+// A beam's nodes and elements into the model, not installed (installBeam puts it in); its index.
+int addBeam(Model& model, const BeamDefinition& definition);
+// The beam named `name`, or an error on `beam` of `origin`; the node of a beam nearest a point
+// (at the positions displacements are measured from).
+int beamNamed(const Model& model, const Origin& origin, const std::string& name);
+int nearestBeamNode(const Model& model, int beam, Vec2 point);
+// A [[beam_node]] resolved to the node of its beam nearest its point.
+PhaseChanges::BeamNodeChange beamNodeChange(const Model& model, const BeamNodeDefinition& definition);
+void applyBeamNodeChange(Model& model, const PhaseChanges::BeamNodeChange& change);
 
 // History subjects by position (initial configuration): the block's gridpoint nearest `point`,
 // and the zone of the block that holds `point` (-1 when none does).

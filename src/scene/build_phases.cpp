@@ -1,5 +1,6 @@
 // A phase definition resolved against the model: the materials, blocks and boundaries it names,
 // its excavations tried on a copy of the model as the phase will find it.
+#include <algorithm>
 #include <cmath>
 
 #include "scene/build_parts.hpp"
@@ -60,11 +61,14 @@ Phase buildPhase(const PhaseDefinition& d, Model& m, std::optional<Model>& geome
   c.localDamping = d.localDamping;
   c.staticSolve = d.staticSolve;
   for (const JointStrengthDefinition& j : d.jointStrengths) c.joints.push_back(jointStrength(m, j));
+  const Structures& st = m.structures;
   for (const std::string& name : d.free) {
     if (!active.erase(name))
-      d.origin.fail("free", "no boundary named '" + name + "' is active when the phase starts (give [[boundary]] or an "
-                            "earlier phase's [[phase.boundary]] that name)");
-    c.freeBoundaries.push_back(name);
+      d.origin.fail("free", "no boundary or beam named '" + name + "' is active when the phase starts (give [[boundary]], "
+                            "[[beam]] or an earlier phase's [[phase.boundary]] or [[phase.beam]] that name)");
+    const auto beam = std::find_if(st.beams.begin(), st.beams.end(), [&](const Beam& b) { return b.name == name; });
+    if (beam != st.beams.end()) c.freeBeams.push_back(static_cast<int>(beam - st.beams.begin()));
+    else c.freeBoundaries.push_back(name);
   }
   for (const BlockStrengthDefinition& b : d.blockStrengths) c.blockStrengths.push_back(blockStrength(m, b));
   for (const RigidBlockChangeDefinition& b : d.blocks) c.blocks.push_back(rigidBlock(m, geometry, b));
@@ -107,6 +111,14 @@ Phase buildPhase(const PhaseDefinition& d, Model& m, std::optional<Model>& geome
     if (!c.flowBoundaries.back().name.empty() && !active.insert(c.flowBoundaries.back().name).second)
       b.origin.fail("name", "boundary '" + c.flowBoundaries.back().name + "' is active when the phase starts; free it first");
   }
+  for (const BeamDefinition& b : d.beams) {
+    if (active.count(b.name))
+      b.origin.fail("name", "'" + b.name + "' names a boundary or beam active when the phase starts: give the beam another");
+    const int index = addBeam(m, b);
+    active.insert(b.name);
+    c.installBeams.push_back(index);
+  }
+  for (const BeamNodeDefinition& b : d.beamNodes) c.beamNodes.push_back(beamNodeChange(m, b));
   return phase;
 }
 

@@ -415,10 +415,7 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
     if (d.point) h.point = *d.point;
   } else if (info->subject == HistorySubject::Beam) {
     const Structures& st = m.structures;
-    int beam = -1;
-    for (int i = 0; i < static_cast<int>(st.beams.size()); ++i)
-      if (st.beams[i].name == d.beam) beam = i;
-    if (beam < 0) d.origin.fail("beam", "no [[beam]] is named '" + d.beam + "'");
+    const int beam = beamNamed(m, d.origin, d.beam);
     const Beam& b = st.beams[beam];
     h.point = *d.point;
     auto distance = [&](int e) {
@@ -426,9 +423,7 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
       const double t = std::clamp(dot(h.point - p, q - p) / dot(q - p, q - p), 0.0, 1.0);
       return norm(h.point - (p + t * (q - p)));
     };
-    h.beamNode = b.firstNode;
-    for (int n = b.firstNode; n < b.firstNode + b.nodeCount; ++n)
-      if (norm(st.nodes.initialPosition[n] - h.point) < norm(st.nodes.initialPosition[h.beamNode] - h.point)) h.beamNode = n;
+    h.beamNode = nearestBeamNode(m, beam, h.point);
     h.beamElement = b.firstElement;
     for (int e = b.firstElement; e < b.firstElement + b.elementCount; ++e)
       if (distance(e) < distance(h.beamElement)) h.beamElement = e;
@@ -530,6 +525,10 @@ Scene buildScene(SceneDefinition s) {
     if (!d.boundary.name.empty() && !active.insert(d.boundary.name).second)
       d.origin.fail("name", "flow boundary '" + d.boundary.name + "' has the name of a [[boundary]]: give it another "
                             "(a phase's free takes either kind by name)");
+  for (const BeamDefinition& d : s.beams)
+    if (!active.insert(d.name).second)
+      d.origin.fail("name", "beam '" + d.name + "' has the name of a boundary: give it another (a phase's free takes "
+                            "boundaries and beams by name)");
   std::optional<Model> excavated;  // a copy of the model, excavated as the phases will, once one does
   std::vector<char> plastic;  // block materials Mohr-Coulomb by the phase at hand
   for (const BlockMaterial& mat : m.blockMaterials) plastic.push_back(mat.plastic);

@@ -228,6 +228,8 @@ struct PhaseDefinition {
   std::vector<BoundaryDefinition> boundaries;
   std::optional<bool> flow;  // fluid flow on or off from the phase's start
   std::vector<FlowBoundaryDefinition> flowBoundaries;
+  std::vector<BeamDefinition> beams;          // installed at the phase's start
+  std::vector<BeamNodeDefinition> beamNodes;  // loads and holds on beams, from the phase's start
   Origin origin;
 };
 

@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
+
+#include "core/errors.hpp"
+#include "core/shown.hpp"
+#include "geometry/polygon.hpp"
 
 namespace vdec {
 
@@ -61,6 +66,37 @@ HostPoint hostPoint(const Model& m, const BeamTie& t) {
   return h;
 }
 
+// An element's forces from its nodes' positions and rotations, co-rotational: the chord's rotation
+// carries the element; what is left of each node's rotation bends it, small against the chord.
+struct ElementState {
+  Vec2 along, across;
+  double axial = 0.0, shear = 0.0, momentA = 0.0, momentB = 0.0, strainEnergy = 0.0;
+};
+
+ElementState elementState(const Model& m, int e) {
+  const Structures& st = m.structures;
+  const BeamNodes& nd = st.nodes;
+  const BeamElements& el = st.elements;
+  const BeamMaterial& mat = st.materials[st.beams[el.beam[e]].material];
+  const int a = el.node[e][0], b = el.node[e][1];
+  const Vec2 d = nd.position[b] - nd.position[a];
+  const double length = norm(d), rest = el.restLength[e];
+  ElementState f;
+  f.along = (1.0 / length) * d;
+  f.across = {-f.along.y, f.along.x};
+  const double chord = wrapped(std::atan2(d.y, d.x) - el.restAngle[e]);
+  const double bendA = wrapped(nd.rotation[a] - chord), bendB = wrapped(nd.rotation[b] - chord);
+  const double ea = mat.young * mat.area, ei = mat.young * mat.inertia;
+  f.axial = ea * (length - rest) / rest;
+  f.momentA = (ei / rest) * (4.0 * bendA + 2.0 * bendB);
+  f.momentB = (ei / rest) * (2.0 * bendA + 4.0 * bendB);
+  // The forces are minus the strain energy's gradient: dL = along . (dxB - dxA), the chord
+  // turns by across . (dxB - dxA) / L, and each bend by its node's rotation less that.
+  f.shear = (f.momentA + f.momentB) / length;
+  f.strainEnergy = 0.5 * f.axial * (length - rest) + (ei / rest) * (2.0 * bendA * bendA + 2.0 * bendA * bendB + 2.0 * bendB * bendB);
+  return f;
+}
+
 }  // namespace
 
 BeamStepTotals computeBeamForces(Model& m, double dt) {
@@ -72,34 +108,22 @@ BeamStepTotals computeBeamForces(Model& m, double dt) {
   std::fill(nd.moment.begin(), nd.moment.end(), 0.0);
   std::fill(nd.forceScale.begin(), nd.forceScale.end(), 0.0);
   for (int e = 0; e < el.size(); ++e) {
-    const BeamMaterial& mat = st.materials[st.beams[el.beam[e]].material];
+    if (!st.beams[el.beam[e]].installed) continue;
     const int a = el.node[e][0], b = el.node[e][1];
-    const Vec2 d = nd.position[b] - nd.position[a];
-    const double length = norm(d), rest = el.restLength[e];
-    const Vec2 along = (1.0 / length) * d, across{-along.y, along.x};
-    // Co-rotational: the chord's rotation carries the element; what is left of each node's
-    // rotation bends it, small against the chord.
-    const double chord = wrapped(std::atan2(d.y, d.x) - el.restAngle[e]);
-    const double bendA = wrapped(nd.rotation[a] - chord), bendB = wrapped(nd.rotation[b] - chord);
-    const double ea = mat.young * mat.area, ei = mat.young * mat.inertia;
-    const double axial = ea * (length - rest) / rest;
-    const double momentA = (ei / rest) * (4.0 * bendA + 2.0 * bendB), momentB = (ei / rest) * (2.0 * bendA + 4.0 * bendB);
-    const double shear = (momentA + momentB) / length;
-    // The forces are minus the strain energy's gradient: dL = along . (dxB - dxA), the chord
-    // turns by across . (dxB - dxA) / L, and each bend by its node's rotation less that.
-    nd.force[a] += axial * along - shear * across;
-    nd.force[b] -= axial * along - shear * across;
-    nd.moment[a] -= momentA;
-    nd.moment[b] -= momentB;
-    const double size = std::hypot(axial, shear);
+    const ElementState f = elementState(m, e);
+    nd.force[a] += f.axial * f.along - f.shear * f.across;
+    nd.force[b] -= f.axial * f.along - f.shear * f.across;
+    nd.moment[a] -= f.momentA;
+    nd.moment[b] -= f.momentB;
+    const double size = std::hypot(f.axial, f.shear);
     nd.forceScale[a] += size;
     nd.forceScale[b] += size;
-    el.axialForce[e] = axial;
-    el.shearForce[e] = shear;
+    el.axialForce[e] = f.axial;
+    el.shearForce[e] = f.shear;
     // Bending moments E I kappa at the ends (kappa the curvature along node 0 -> node 1, positive
     // bending counter-clockwise): the cubic's w''(0) L = -(4 a + 2 b), w''(L) L = 2 a + 4 b.
-    el.endMoment[e] = {-momentA, momentB};
-    totals.strainEnergy += 0.5 * axial * (length - rest) + (ei / rest) * (2.0 * bendA * bendA + 2.0 * bendA * bendB + 2.0 * bendB * bendB);
+    el.endMoment[e] = {-f.momentA, f.momentB};
+    totals.strainEnergy += f.strainEnergy;
   }
   std::fill(nd.tieForce.begin(), nd.tieForce.end(), Vec2{});
   for (BeamTie& t : st.ties) {
@@ -155,6 +179,7 @@ MotionStepTotals integrateBeamNodes(Model& m, double dt, double alpha, double lo
     return v1;
   };
   for (int i = 0; i < nd.size(); ++i) {
+    if (!m.structures.beams[nd.beam[i]].installed) continue;
     const Vec2 body = nd.mass[i] * m.gravity + nd.appliedForce[i] + nd.tieForce[i];
     double unbalanced = 0.0;
     const Vec2 v{advance(nd.fixed[i] & DriveX, nd.velocity[i].x, nd.mass[i], nd.force[i].x, body.x, unbalanced),
@@ -185,6 +210,7 @@ double beamTimeStep(const Model& m, double frac, double zoneFraction) {
   // covers); a rotation row 4 EI/L, 2 EI/L and 6 EI/L^2 for each translation.
   std::vector<double> translation(nd.size(), 0.0), rotation(nd.size(), 0.0);
   for (int e = 0; e < el.size(); ++e) {
+    if (!st.beams[el.beam[e]].installed) continue;
     const BeamMaterial& mat = st.materials[st.beams[el.beam[e]].material];
     const double length = el.restLength[e];
     const double ei = mat.young * mat.inertia;
@@ -206,7 +232,7 @@ double beamTimeStep(const Model& m, double frac, double zoneFraction) {
       for (int c = 0; c < 3; ++c) pointStiffness[m.zones.gridpoint[t.zone][c]] += t.weight[c] * k;
   }
   double largest = 0.0;
-  for (int i = 0; i < nd.size(); ++i) largest = std::max({largest, translation[i], rotation[i]});
+  for (int i = 0; i < nd.size(); ++i) largest = std::max({largest, translation[i], rotation[i]});  // 0 where not installed
   // 0.9 of the bound, for what it leaves out: the ties' rock moving too, a chord turning fast.
   double dt = largest > 0.0 ? 0.9 * 2.0 / std::sqrt(largest) : INFINITY;
   for (int b = 0; b < m.blocks.size(); ++b)
@@ -215,6 +241,133 @@ double beamTimeStep(const Model& m, double frac, double zoneFraction) {
     if (pointStiffness[i] > 0.0)
       dt = std::min(dt, zoneFraction * 2.0 * std::sqrt(m.gridpoints.mass[i] / (m.gridpoints.stiffness[i] + pointStiffness[i])));
   return dt;
+}
+
+namespace {
+
+double segmentDistance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+  return norm(p - (a + t * d));
+}
+
+// Distance from a point to a triangle (0 inside) and the point's barycentric weights, clamped
+// to the triangle.
+double triangleDistance(Vec2 p, const std::array<Vec2, 3>& v, std::array<double, 3>& weight) {
+  const double area = cross(v[1] - v[0], v[2] - v[0]);
+  for (int k = 0; k < 3; ++k) weight[k] = cross(v[(k + 1) % 3] - p, v[(k + 2) % 3] - p) / area;
+  if (weight[0] >= 0.0 && weight[1] >= 0.0 && weight[2] >= 0.0) return 0.0;
+  double best = INFINITY;
+  for (int k = 0; k < 3; ++k) best = std::min(best, segmentDistance(p, v[k], v[(k + 1) % 3]));
+  double sum = 0.0;
+  for (double& w : weight) sum += (w = std::max(w, 0.0));
+  for (double& w : weight) w /= sum;
+  return best;
+}
+
+// The rock a point of the reference configuration (the input, or the last displacement reset)
+// belongs to: the zone (deformable block) or rigid block holding it, else the nearest within the
+// rounding length (a lining on an excavated face lies on the blocks' edge). Excavated rock is none.
+// Returns the distance to it (infinite: none).
+double findHost(const Model& m, Vec2 point, BeamTie& host) {
+  double nearest = INFINITY;
+  const Blocks& bl = m.blocks;
+  for (int b = 0; b < bl.size(); ++b) {
+    if (bl.deformable[b] || bl.excavated(b)) continue;
+    Polygon p;
+    const int first = bl.firstVertex[b], last = first + bl.vertexCount[b];
+    for (int v = first; v < last; ++v) p.push_back(bl.initialCentroid[b] + m.vertices.localPosition[v]);
+    double distance = containsPoint(p, point) ? 0.0 : INFINITY;
+    for (int v = 0; distance > 0.0 && v < static_cast<int>(p.size()); ++v)
+      distance = std::min(distance, segmentDistance(point, p[v], p[(v + 1) % p.size()]));
+    if (distance < nearest) {
+      nearest = distance;
+      host = {};
+      host.block = b;
+      host.local = point - bl.initialCentroid[b];
+    }
+  }
+  for (int z = 0; z < m.zones.size(); ++z) {
+    std::array<Vec2, 3> corner;
+    for (int k = 0; k < 3; ++k) corner[k] = m.gridpoints.initialPosition[m.zones.gridpoint[z][k]];
+    std::array<double, 3> weight;
+    const double distance = triangleDistance(point, corner, weight);
+    if (distance < nearest) {
+      nearest = distance;
+      host = {};
+      host.block = m.zones.block[z];
+      host.zone = z;
+      host.weight = weight;
+    }
+  }
+  return nearest;
+}
+
+}  // namespace
+
+void installBeam(Model& m, int index, const std::string& when) {
+  Structures& st = m.structures;
+  Beam& beam = st.beams[index];
+  BeamNodes& nd = st.nodes;
+  BeamElements& el = st.elements;
+  const BeamMaterial& mat = st.materials[beam.material];
+  for (int n = beam.firstNode; n < beam.firstNode + beam.nodeCount; ++n) {
+    nd.velocity[n] = {};
+    nd.angularVelocity[n] = 0.0;
+    nd.rotation[n] = 0.0;
+    if (!beam.tied) continue;
+    const Vec2 point = nd.initialPosition[n];
+    BeamTie t;
+    const double distance = findHost(m, point, t);
+    if (!(distance <= m.roundingLength))
+      throw SceneError((when.empty() ? "" : when + ": ") + "beam '" + beam.name + "': its node at (" + shown(point.x) + ", " + shown(point.y) +
+                       ") lies on no block (the nearest is " + shown(distance) + " m away, beyond the rounding length): "
+                       "place the beam on the rock, or set tied = false");
+    t.node = n;
+    t.normalStiffness = mat.tieNormalStiffness * nd.length[n];
+    t.shearStiffness = mat.tieShearStiffness * nd.length[n];
+    t.cohesion = mat.tieCohesion * nd.length[n];
+    t.friction = mat.tieFriction;
+    t.tension = mat.tieTension * nd.length[n];
+    // Installed where the rock is now: the node on its host's point as the rock has moved.
+    nd.position[n] = hostPoint(m, t).position;
+    st.ties.push_back(t);
+  }
+  // Stress-free as placed.
+  for (int e = beam.firstElement; e < beam.firstElement + beam.elementCount; ++e) {
+    const Vec2 chord = nd.position[el.node[e][1]] - nd.position[el.node[e][0]];
+    el.restLength[e] = norm(chord);
+    el.restAngle[e] = std::atan2(chord.y, chord.x);
+    el.axialForce[e] = el.shearForce[e] = 0.0;
+    el.endMoment[e] = {0.0, 0.0};
+  }
+  for (int n = beam.firstNode; n < beam.firstNode + beam.nodeCount; ++n) nd.initialPosition[n] = nd.position[n];
+  if (!st.ties.empty()) {
+    m.blocks.boundaryForce.resize(m.blocks.size());
+    m.blocks.boundaryMoment.resize(m.blocks.size());
+  }
+  beam.installed = true;
+}
+
+double removeBeam(Model& m, int index) {
+  Structures& st = m.structures;
+  Beam& beam = st.beams[index];
+  BeamNodes& nd = st.nodes;
+  double energy = 0.0;
+  for (int e = beam.firstElement; e < beam.firstElement + beam.elementCount; ++e) energy += elementState(m, e).strainEnergy;
+  for (int n = beam.firstNode; n < beam.firstNode + beam.nodeCount; ++n) {
+    energy += 0.5 * (nd.mass[n] * dot(nd.velocity[n], nd.velocity[n]) +
+                     nd.rotaryInertia[n] * nd.angularVelocity[n] * nd.angularVelocity[n]);
+    nd.velocity[n] = {};
+    nd.angularVelocity[n] = 0.0;
+  }
+  for (BeamTie& t : st.ties)
+    if (nd.beam[t.node] == index) {
+      t.broken = true;
+      t.force = {};
+    }
+  beam.installed = false;
+  return energy;
 }
 
 }  // namespace vdec

@@ -87,6 +87,10 @@ struct Beam {
   int firstNode = 0, nodeCount = 0;
   int firstElement = 0, elementCount = 0;
   bool closed = false;                 // a ring: the last node joined to the first
+  bool tied = false;                   // tied to the rock when installed
+  // In the model: from the start for a [[beam]], from its phase's start for a [[phase.beam]],
+  // until a phase frees it. A beam not installed has no forces, motion or ties.
+  bool installed = false;
 };
 
 struct Structures {

@@ -2,6 +2,7 @@
 errors of their keys, ties to a deformable block, self-weight, a restart across phases and the
 independence of the thread count."""
 import json
+import math
 import os
 import re
 import subprocess
@@ -235,3 +236,129 @@ def test_beam_position_histories_are_sampled_from_the_start_and_forces_a_step_be
     w, m = results["histories"]["w"], results["histories"]["m"]
     assert w["t"][0] == 0.0 and w["value"][0] == 0.0, "the input position, at t = 0"
     assert len(w["t"]) == len(m["t"]) + 1 and w["t"][1:] == [t + (w["t"][1] - 0.0) for t in m["t"]]
+
+
+# The zoned base pressed by a load on its top (no beam yet), then a beam installed on the
+# pressed face, then loaded; finally the beam freed.
+STAGED = """[model]
+rounding = 0.01
+gravity = [0.0, 0.0]
+[solver]
+local_damping = 0.8
+[[joint_material]]
+name = "j"
+kn = 1e10
+ks = 1e10
+[[block_material]]
+name = "rock"
+density = 2500.0
+young = 1e9
+poisson = 0.25
+[[block]]
+name = "base"
+material = "rock"
+vertices = [[-0.5, -1.0], [2.5, -1.0], [2.5, 0.0], [-0.5, 0.0]]
+zoning = { nx = 12, ny = 4 }
+[[boundary]]
+block = "base"
+y = [-1.0, -1.0]
+fix = ["x", "y"]
+[[boundary]]
+name = "press"
+block = "base"
+y = [0.0, 0.0]
+stress = [0.0, -1e6, 0.0]
+[[beam_material]]
+name = "steel"
+young = 200e9
+area = 0.01
+inertia = 1e-5
+density = 7850.0
+tie_normal_stiffness = 1e8
+tie_shear_stiffness = 1e8
+[[phase]]
+name = "press"
+stop = { ratio = 1e-6, cycles = 50000 }
+[[phase]]
+name = "support"
+stop = { cycles = 1 }
+[[phase.beam]]
+name = "b"
+material = "steel"
+points = [[0.0, 0.0], [2.0, 0.0]]
+elements = 8
+tied = true
+[[phase]]
+name = "load"
+stop = { ratio = 1e-6, cycles = 50000 }
+[[phase.beam_node]]
+beam = "b"
+point = [1.0, 0.0]
+force = [0.0, -1000.0]
+"""
+
+
+@pytest.mark.requirements("REQ-STRUCT-006")
+def test_a_phase_installs_a_beam_stress_free_on_the_rock_as_it_has_moved_and_a_later_phase_frees_it(tmp_path):
+    # Installed after the press: on the pressed face, stress-free (one cycle later its forces are
+    # still those of one step's motion, nothing of the press's 1e-4 m settlement).
+    done, installed = run(tmp_path, STAGED.replace('[[phase]]\nname = "load"', '[[phase]]\nname = "unused"')
+                          .split('[[phase]]\nname = "unused"')[0], name="installed")
+    assert done.returncode == 0, done.stderr
+    beams, gridpoints = installed["beams"], installed["gridpoints"]
+    assert beams["installed"] == [1]
+    settled = min(gridpoints["displacement_y"])
+    assert settled < -1e-4, "the press settled the face"
+    for x0, uy in zip(beams["nodes"]["x0"], beams["nodes"]["displacement_y"]):
+        assert abs(uy) < 1e-9, "displacements count from the installation"
+    # the nodes were placed on the face as it had settled
+    face = [(x + ux, y + uy) for x, y, ux, uy in zip(gridpoints["x0"], gridpoints["y0"], gridpoints["displacement_x"],
+                                                     gridpoints["displacement_y"]) if y == 0.0]
+    for x, y in zip(beams["nodes"]["x0"], beams["nodes"]["y0"]):
+        gap = min(math.hypot(x - fx, y - fy) for fx, fy in face)
+        assert gap < 1e-9 and y < -1e-5, (x, y, gap)  # the face moves a little in the phase's one cycle
+    assert max(abs(f) for f in beams["elements"]["axial_force"]) < 1.0
+    assert max(abs(m) for m in beams["elements"]["moment_0"] + beams["elements"]["moment_1"]) < 1e-2
+    # Then loaded: the beam carries the load to the rock through its ties; a later phase frees it.
+    freed = STAGED + '[[phase]]\nname = "free"\nstop = { cycles = 10 }\nfree = ["b"]\n'
+    done, results = run(tmp_path, freed, name="freed")
+    assert done.returncode == 0, done.stderr
+    assert results["beams"]["installed"] == [0]
+    assert all(results["beams"]["ties"]["broken"])
+    assert results["energy"]["removed"] > 0.0
+    done, loaded = run(tmp_path, STAGED, name="loaded")
+    # Statics, to the stop's residue: the ratio 1e-6 is of the mean force, which the press's zone
+    # forces (some 1e5 N per gridpoint) set, so each of the nine nodes may be out of balance by
+    # about 0.1 N: 1e-3 of the load.
+    assert sum(loaded["beams"]["ties"]["force_y"]) == pytest.approx(1000.0, rel=1e-3)
+
+
+STAGED_BAD = [
+    ("phase beam of a boundary's name", STAGED.replace('[[phase.beam]]\nname = "b"', '[[phase.beam]]\nname = "press"'), "name",
+     "names a boundary or beam active"),
+    ("free of nothing", STAGED + '[[phase]]\nname = "free"\nstop = { cycles = 10 }\nfree = ["c"]\n', "free",
+     "no boundary or beam named 'c'"),
+    ("phase beam node of no beam", STAGED.replace('[[phase.beam_node]]\nbeam = "b"', '[[phase.beam_node]]\nbeam = "c"'), "beam",
+     "no [[beam]] is named 'c'"),
+    ("scene beam of a boundary's name", STAGED.replace("[[phase]]\nname = \"press\"",
+                                                       '[[beam]]\nname = "press"\nmaterial = "steel"\npoints = [[0.0, 0.5], [1.0, 0.5]]\nelements = 1\n[[phase]]\nname = "press"'),
+     "name", "has the name of a boundary"),
+]
+
+
+@pytest.mark.requirements("REQ-STRUCT-006")
+@pytest.mark.parametrize("what, text, key, phrase", STAGED_BAD, ids=[b[0] for b in STAGED_BAD])
+def test_bad_phase_beams_are_scene_errors_naming_the_key(tmp_path, what, text, key, phrase):
+    done, _ = run(tmp_path, text)
+    assert done.returncode == 3, (what, done.stderr)
+    assert key in done.stderr and phrase in done.stderr, (what, done.stderr)
+
+
+@pytest.mark.requirements("REQ-STRUCT-006")
+def test_a_phase_beam_on_rock_dug_out_before_it_is_refused_when_the_phase_starts(tmp_path):
+    dug = STAGED.replace('[[phase]]\nname = "support"',
+                         '[[phase]]\nname = "dig"\nstop = { cycles = 1 }\n[[phase.excavation]]\n'
+                         'polygon = [[-1.0, -0.5], [3.0, -0.5], [3.0, 0.5], [-1.0, 0.5]]\n[[phase]]\nname = "support"')
+    done, _ = run(tmp_path, dug)
+    assert done.returncode == 3, done.stderr
+    assert "phase 'support'" in done.stderr and "lies on no block" in done.stderr, done.stderr

@@ -575,3 +575,51 @@ polygon = [[-4.0, -2.0], [4.0, -2.0], [4.0, 3.0], [-4.0, 3.0]]
 """)
     assert done.returncode == 3, done.stderr
     assert "[phase[1].excavation[0]]" in done.stderr and "removes every block when the phase starts" in done.stderr
+
+
+@REQ
+def test_a_displacement_reset_leaves_a_turned_rigid_block_where_it_stands(tmp_path):
+    # A block spinning at 1 rad/s turns 0.5 rad in the first phase; the reset counts rotations from
+    # there, and the block must stay turned (its rotation was once simply zeroed, which turned it back).
+    import xml.etree.ElementTree as ET
+    text = """[model]
+rounding = 0.01
+gravity = [0.0, 0.0]
+[output]
+vtk_every = 1000000
+[[joint_material]]
+name = "j"
+kn = 1e10
+ks = 1e10
+[[block_material]]
+name = "rock"
+density = 2500.0
+[[block]]
+name = "a"
+material = "rock"
+vertices = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]
+angular_velocity = 1.0
+[[block]]
+name = "far"
+material = "rock"
+vertices = [[10.0, 0.0], [11.0, 0.0], [11.0, 1.0], [10.0, 1.0]]
+fix = ["x", "y", "rotation"]
+[[phase]]
+name = "spin"
+stop = { time = 0.5 }
+[[phase]]
+name = "reset"
+stop = { cycles = 1 }
+reset = ["displacements"]
+"""
+    done, results = run(tmp_path, text)
+    assert done.returncode == 0, done.stderr
+    turned = 0.5 + results["blocks"][0]["angular_velocity"] * results["run"]["dt"]
+    assert results["blocks"][0]["rotation"] == pytest.approx(results["run"]["dt"], rel=1e-9, abs=0)
+    last = sorted((tmp_path / "out" / "vtk").glob("snapshot_*.vtu"))[-1]
+    piece = ET.parse(last).getroot().find("UnstructuredGrid/Piece")
+    position = next(a for a in piece.iter("DataArray") if a.get("Name") == "position")
+    xy = [float(v) for v in position.text.split()]
+    first, second = (xy[0], xy[1]), (xy[3], xy[4])
+    # the block's first edge, from vertex 0 to vertex 1, 2 m long along the block's turned axis
+    assert math.atan2(second[1] - first[1], second[0] - first[0]) == pytest.approx(turned, abs=1e-9)
