@@ -852,3 +852,31 @@ def test_first_periods_are_the_inverse_first_frequencies():
     assert lumped * f == pytest.approx(1.0, rel=1e-15, abs=0)
     # the lumped cantilever is slower than the continuum (it converges from below in frequency)
     assert lumped > st.cantilever_first_period(**args)
+
+
+@REQ
+def test_lining_ring_in_a_finite_medium_with_interface_springs_is_the_three_springs_in_series():
+    args = dict(R=1.0, t=0.2, E_l=30e9, nu_l=0.0, E_m=10e9, nu_m=0.25, p0=10e6)
+    plain = st.lining_ring(**args)
+    # huge outer radius and stiff springs: the infinite-medium formula
+    near = st.lining_ring(**args, outer_radius=1e6, interface_stiffness=1e30)
+    assert near["support_pressure"] == pytest.approx(plain["support_pressure"], rel=1e-9, abs=0)
+    # an independent form: Lame's hollow cylinder for the medium (wall displacement of a unit
+    # pressure drop, from the stresses' radial equilibrium solved numerically) and springs in series
+    b, k = 10.0, 1e12
+    R, nu, E = 1.0, 0.25, 10e9
+    # u(r) = A r + B / r in plane strain: sigma_r = E/((1+nu)(1-2nu)) ((A (1) ) ...) solved for
+    # sigma_r(R) = -1, sigma_r(b) = 0 by a linear system
+    lam, mu = E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
+    def sigma_r(A, B, r):
+        return 2 * (lam + mu) * A - 2 * mu * B / r ** 2
+    M = np.array([[2 * (lam + mu), -2 * mu / R ** 2], [2 * (lam + mu), -2 * mu / b ** 2]])
+    A, B = np.linalg.solve(M, np.array([-1.0, 0.0]))   # a unit pressure on the wall, none outside
+    f_m = A * R + B / R                                  # outward per unit pressure: inward per unit drop
+    f_l = R * R / (30e9 * 0.2)
+    expected = 10e6 * f_m / (f_m + f_l + 1.0 / k)
+    got = st.lining_ring(**args, outer_radius=b, interface_stiffness=k)
+    assert got["support_pressure"] == pytest.approx(expected, rel=1e-12, abs=0)
+    assert got["wall_displacement"] == pytest.approx(expected * (f_l + 1.0 / k), rel=1e-12, abs=0)
+    with pytest.raises(ValueError, match="outer_radius"):
+        st.lining_ring(**args, outer_radius=0.5)

@@ -880,7 +880,8 @@ def compressibility_ratio(*, R, t, E_l, nu_l, E_m, nu_m):
     return E_m * R * (1.0 - nu_l ** 2) / (E_l * t * (1.0 - nu_m ** 2))
 
 
-def lining_ring(*, R, t, E_l, nu_l, E_m, nu_m, p0, released_fraction=0.0):
+def lining_ring(*, R, t, E_l, nu_l, E_m, nu_m, p0, released_fraction=0.0, outer_radius=math.inf,
+                interface_stiffness=math.inf):
     """A thin circular lining in an elastic medium under hydrostatic in-situ stress p0 (compression
     positive), installed after released_fraction (lam_d, in [0, 1]) of p0 has been released at the
     wall: 0 is the lining in place before any unloading. Returns a dict (derivation above):
@@ -891,16 +892,40 @@ def lining_ring(*, R, t, E_l, nu_l, E_m, nu_m, p0, released_fraction=0.0):
         "hoop_stress"          T / t                                          (Pa, compression)
         "lining_displacement"  p R^2 (1 - nu_l^2) / (E_l t)                   (m inward, since installation)
         "wall_displacement"    lam_d p0 R (1 + nu_m) / E_m + the above        (m inward, since excavation)
-    """
+
+    Two refinements for a model to be compared with, both off by default:
+    outer_radius b: the medium a thick cylinder R <= r <= b whose outer face keeps its traction p0
+    (plane strain, Lame): a change q of the wall's pressure moves the wall by
+    q R (1 + nu_m) ((1 - 2 nu_m) R^2 + b^2) / (E_m (b^2 - R^2)) instead of q R (1 + nu_m) / E_m;
+    interface_stiffness k_i (N/m per m of lining): radial springs between lining and wall, adding
+    p / k_i to the wall's displacement. With f_m, f_l = R^2 (1 - nu_l^2) / (E_l t) and f_i = 1 / k_i
+    the radial compliances of medium, lining and springs, compatibility after installation,
+    ((1 - lam_d) p0 - p) f_m = p (f_l + f_i), gives p = (1 - lam_d) p0 f_m / (f_m + f_l + f_i) (the
+    formula above when b and k_i are infinite: f_l / f_m = C (1 - nu_m)); the wall then moves
+    lam_d p0 f_m + p (f_l + f_i) since excavation."""
     C = compressibility_ratio(R=R, t=t, E_l=E_l, nu_l=nu_l, E_m=E_m, nu_m=nu_m)
     p0 = _non_negative("p0 (in-situ stress)", p0)
     lam_d = _scalar("released_fraction", released_fraction)
     if not 0.0 <= lam_d <= 1.0:
         raise ValueError(f"released_fraction = {lam_d}: must lie in [0, 1]")
-    p = (1.0 - lam_d) * p0 / (1.0 + C * (1.0 - nu_m))
-    lining = p * R * R * (1.0 - nu_l ** 2) / (E_l * t)
+    b = float(outer_radius)
+    if math.isnan(b) or not b > R:
+        raise ValueError(f"outer_radius = {b}: must exceed the lining radius R = {R}")
+    k_i = float(interface_stiffness)
+    if math.isnan(k_i) or not k_i > 0.0:
+        raise ValueError(f"interface_stiffness = {interface_stiffness}: must be > 0 (infinite: rigid)")
+    f_m = R * (1.0 + nu_m) / E_m
+    if math.isfinite(b):
+        f_m *= ((1.0 - 2.0 * nu_m) * R * R + b * b) / (b * b - R * R)
+    f_l = R * R * (1.0 - nu_l ** 2) / (E_l * t)
+    f_i = 1.0 / k_i
+    if math.isinf(b) and math.isinf(k_i):
+        p = (1.0 - lam_d) * p0 / (1.0 + C * (1.0 - nu_m))
+    else:
+        p = (1.0 - lam_d) * p0 * f_m / (f_m + f_l + f_i)
+    lining = p * f_l
     return {"compressibility": C, "support_pressure": p, "thrust": p * R, "hoop_stress": p * R / t,
-            "lining_displacement": lining, "wall_displacement": lam_d * p0 * R * (1.0 + nu_m) / E_m + lining}
+            "lining_displacement": lining, "wall_displacement": lam_d * p0 * f_m + p * (f_l + f_i)}
 
 
 # ================================================================ a roof wedge held by cables
