@@ -75,6 +75,16 @@ void visitState(A& a, Beam& b) {
   a(b.name), a(b.material), a(b.firstNode), a(b.nodeCount), a(b.firstElement), a(b.elementCount), a(b.closed), a(b.tied), a(b.installed);
 }
 template <class A>
+void visitState(A& a, CableMaterial& c) {
+  a(c.name), a(c.young), a(c.area), a(c.density), a(c.yieldTension), a(c.yieldCompression), a(c.bondStiffness);
+  a(c.bondStrength);
+}
+template <class A>
+void visitState(A& a, Cable& c) {
+  a(c.name), a(c.material), a(c.direction), a(c.firstNode), a(c.nodeCount), a(c.firstElement), a(c.elementCount);
+  a(c.installed);
+}
+template <class A>
 void visitState(A& a, Structures& s) {
   BeamNodes& n = s.nodes;
   BeamElements& e = s.elements;
@@ -82,6 +92,11 @@ void visitState(A& a, Structures& s) {
   a(n.angularVelocity), a(n.force), a(n.moment), a(n.tieForce), a(n.forceScale), a(n.appliedForce), a(n.appliedMoment), a(n.mass);
   a(n.rotaryInertia), a(n.length), a(n.fixed), a(e.node), a(e.beam), a(e.restLength), a(e.restAngle);
   a(e.axialForce), a(e.shearForce), a(e.endMoment), a(s.ties);
+  CableNodes& cn = s.cableNodes;
+  CableElements& ce = s.cableElements;
+  a(s.cableMaterials), a(s.cables), a(cn.cable), a(cn.position), a(cn.displacement), a(cn.velocity), a(cn.force);
+  a(cn.forceScale), a(cn.appliedForce), a(cn.mass), a(cn.length), a(cn.fixed), a(cn.slip), a(cn.bondForce);
+  a(cn.slipping), a(cn.hold), a(ce.node), a(ce.cable), a(ce.restLength), a(ce.axialForce);
 }
 template <class A>
 void visitState(A& a, Model& m) {

@@ -1,4 +1,4 @@
-// [[beam_material]], [[beam]] and [[beam_node]]: rock support by beams (docs/models/support.md).
+// [[beam_material]], [[beam]], [[beam_node]], [[cable_material]], [[cable]], [[cable_node]]: rock support (docs/models/support.md).
 #include <cmath>
 #include <numbers>
 
@@ -27,6 +27,50 @@ BeamMaterialDefinition readBeamMaterial(TableReader& r) {
   if (r.has("tie_tension")) m.tieTension = r.nonNegative("tie_tension", 0.0);
   if (r.has("tie_friction") && !r.has("tie_cohesion"))
     r.fail("tie_friction", "limits the ties' shear with tie_cohesion: give tie_cohesion too (0 for friction alone)");
+  r.finish();
+  return d;
+}
+
+CableMaterialDefinition readCableMaterial(TableReader& r) {
+  CableMaterialDefinition d;
+  d.origin = r.origin();
+  CableMaterial& m = d.material;
+  m.name = r.string("name");
+  m.young = r.positive("young");
+  m.area = r.positive("area");
+  m.density = r.positive("density");
+  d.spacing = r.has("spacing") ? r.positive("spacing") : 1.0;
+  if (r.has("yield_tension")) m.yieldTension = r.positive("yield_tension");
+  if (r.has("yield_compression")) m.yieldCompression = r.nonNegative("yield_compression", 0.0);
+  m.bondStiffness = r.positive("bond_stiffness");
+  if (r.has("bond_strength")) m.bondStrength = r.positive("bond_strength");
+  r.finish();
+  return d;
+}
+
+CableDefinition readCable(TableReader& r) {
+  CableDefinition d;
+  d.origin = r.origin();
+  d.name = r.string("name");
+  d.material = r.string("material");
+  const Polygon points = r.polygon("points");
+  if (points.size() != 2) r.fail("points", "a cable is straight: give its two ends, [[x0, y0], [x1, y1]]");
+  if (points[0].x == points[1].x && points[0].y == points[1].y) r.fail("points", "the two ends are the same point");
+  d.from = points[0];
+  d.to = points[1];
+  d.elements = static_cast<int>(r.integer("elements", 1, kMostElements));
+  r.finish();
+  return d;
+}
+
+CableNodeDefinition readCableNode(TableReader& r) {
+  CableNodeDefinition d;
+  d.origin = r.origin();
+  d.cable = r.string("cable");
+  d.point = r.vec2("point");
+  d.force = r.number("force", 0.0);
+  d.fix = r.boolean("fix", false);
+  if (!r.has("force") && !r.has("fix")) r.failTable("gives the node nothing: give force (N per m, along the cable) or fix = true");
   r.finish();
   return d;
 }
@@ -100,6 +144,18 @@ void readStructures(TableReader& top, SceneDefinition& scene) {
   for (auto [table, prefix] : top.tables("beam_node")) {
     TableReader r(*table, prefix, top.file());
     scene.beamNodes.push_back(readBeamNode(r));
+  }
+  for (auto [table, prefix] : top.tables("cable_material")) {
+    TableReader r(*table, prefix, top.file());
+    scene.cableMaterials.push_back(readCableMaterial(r));
+  }
+  for (auto [table, prefix] : top.tables("cable")) {
+    TableReader r(*table, prefix, top.file());
+    scene.cables.push_back(readCable(r));
+  }
+  for (auto [table, prefix] : top.tables("cable_node")) {
+    TableReader r(*table, prefix, top.file());
+    scene.cableNodes.push_back(readCableNode(r));
   }
 }
 

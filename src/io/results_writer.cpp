@@ -147,6 +147,33 @@ void writeStructures(nlohmann::json& j, const Model& m) {
                           {"broken", broken}, {"slipping", slipping}}}};
 }
 
+// Cables: their nodes (position as installed, displacement and slip along the cable, the grout's
+// force, whether grouted and slipping) and elements (axial force).
+void writeCables(nlohmann::json& j, const Model& m) {
+  const Structures& st = m.structures;
+  const CableNodes& nd = st.cableNodes;
+  std::vector<double> x0, y0;
+  std::vector<int> grouted;
+  for (int i = 0; i < nd.size(); ++i) {
+    x0.push_back(nd.position[i].x);
+    y0.push_back(nd.position[i].y);
+    grouted.push_back(nd.hold[i].block >= 0);
+  }
+  std::vector<int> node0, node1;
+  for (const auto& n : st.cableElements.node) {
+    node0.push_back(n[0]);
+    node1.push_back(n[1]);
+  }
+  std::vector<std::string> names;
+  for (const Cable& c : st.cables) names.push_back(c.name);
+  j["cables"] = {{"names", names},
+                 {"nodes", {{"cable", nd.cable}, {"x0", x0}, {"y0", y0}, {"displacement", nd.displacement},
+                            {"slip", nd.slip}, {"bond_force", nd.bondForce}, {"grouted", grouted}, {"slipping", nd.slipping},
+                            {"mass", nd.mass}}},
+                 {"elements", {{"cable", st.cableElements.cable}, {"node_0", node0}, {"node_1", node1},
+                               {"length", st.cableElements.restLength}, {"axial_force", st.cableElements.axialForce}}}};
+}
+
 // Fluid in the joints: the domains (at their present centres), the knots (at their present
 // points) and the fluid balance.
 void writeFlow(nlohmann::json& j, const Model& m) {
@@ -345,7 +372,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
   j["contacts"] = contacts;
   if (m.zones.size() > 0) writeContinuum(j, m);
   if (m.flow.present) writeFlow(j, m);
-  if (m.structures.any()) writeStructures(j, m);
+  if (!m.structures.beams.empty()) writeStructures(j, m);
+  if (!m.structures.cables.empty()) writeCables(j, m);
 
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

@@ -22,7 +22,7 @@ struct Grid {
   // Point data: displacement and velocity (rigid block vertices take their block's).
   std::vector<Vec2> displacement, velocity;
   // Cell data.
-  std::vector<int> kind;  // 0 zone, 1 rigid block, 2 contact, 3 fluid domain, 4 flow knot, 5 beam element
+  std::vector<int> kind;  // 0 zone, 1 rigid block, 2 contact, 3 fluid domain, 4 flow knot, 5 beam element, 6 cable element
   std::vector<int> block;
   std::vector<double> sxx, syy, sxy, szz, normalForce, shearForce;
   bool fluid = false;  // the fluid's arrays below, with [fluid] only
@@ -54,7 +54,7 @@ void pointCell(Grid& g, Vec2 at, int kind, int block) {
 Grid collect(const Model& m) {
   Grid g;
   g.fluid = m.flow.present;
-  g.beams = m.structures.any();
+  g.beams = m.structures.any();  // beams' and cables' arrays alike
   const Gridpoints& gp = m.gridpoints;
   for (int i = 0; i < gp.size(); ++i) {
     g.points.push_back(gp.position[i]);
@@ -118,6 +118,23 @@ Grid collect(const Model& m) {
     g.beamShear.back() = el.shearForce[e];
     g.moment0.back() = el.endMoment[e][0];
     g.moment1.back() = el.endMoment[e][1];
+  }
+  // Cable elements: lines between their nodes, which sit where they were installed, moved along
+  // the cable by their displacement.
+  const Structures& st = m.structures;
+  const CableNodes& cn = st.cableNodes;
+  const int firstCableNode = static_cast<int>(g.points.size());
+  for (int i = 0; i < cn.size(); ++i) {
+    const Vec2 along = st.cables[cn.cable[i]].direction;
+    g.points.push_back(cn.position[i] + cn.displacement[i] * along);
+    g.displacement.push_back(cn.displacement[i] * along);
+    g.velocity.push_back(cn.velocity[i] * along);
+  }
+  for (int e = 0; e < st.cableElements.size(); ++e) {
+    g.cells.push_back({firstCableNode + st.cableElements.node[e][0], firstCableNode + st.cableElements.node[e][1]});
+    g.types.push_back(kLine);
+    cellDefaults(g, 6, -1);
+    g.axialForce.back() = st.cableElements.axialForce[e];
   }
   return g;
 }
@@ -202,7 +219,7 @@ void VtkSeries::write(const Model& m) {
   vectorArray(out, "velocity", g.velocity);
   out << "</PointData>\n<CellData>\n";
   const std::string kinds = std::string("kind (0 zone, 1 rigid block, 2 contact") +
-                            (g.fluid ? ", 3 fluid domain, 4 flow knot" : "") + (g.beams ? ", 5 beam element" : "") + ")";
+                            (g.fluid ? ", 3 fluid domain, 4 flow knot" : "") + (g.beams ? ", 5 beam element, 6 cable element" : "") + ")";
   dataArray(out, kinds.c_str(), g.kind, "Int32");
   dataArray(out, "block", g.block, "Int32");
   dataArray(out, "sxx", g.sxx, "Float64");

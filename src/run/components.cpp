@@ -11,6 +11,7 @@
 #include "motion/rigid_motion.hpp"
 #include "run/component.hpp"
 #include "structure/beams.hpp"
+#include "structure/cables.hpp"
 #include "zone/cst.hpp"
 
 namespace vdec {
@@ -136,15 +137,37 @@ Component fractureFlow(RunContext& run) {
 // Beams (1.4.4): the elements' and ties' forces with the step's forces, the nodes' motion with
 // the blocks'. The ties' springs and slip enter the energy account as work on nodes and rock.
 Component structures(RunContext& run) {
-  Component c{"structures", {}, [&run] { return beamTimeStep(run.model, run.settings.frac, run.settings.zoneFraction); }};
-  c.stages.push_back({"beam-forces", [&run] {
-                        run.step.strainEnergy += computeBeamForces(run.model, run.model.cycle == 0 ? 0.0 : run.dt).strainEnergy;
-                      }});
-  c.stages.push_back({"beam-motion",
-                      [&run] {
-                        run.step.merge(integrateBeamNodes(run.model, run.dt, run.massDamping, run.settings.localDamping));
-                      },
-                      StepPart::Motion});
+  Component c{"structures", {}, [&run] {
+                return std::min(beamTimeStep(run.model, run.settings.frac, run.settings.zoneFraction),
+                                cableTimeStep(run.model, run.settings.frac, run.settings.zoneFraction));
+              }};
+  const Structures& st = run.model.structures;
+  if (!st.beams.empty()) {
+    c.stages.push_back({"beam-forces", [&run] {
+                          run.step.strainEnergy += computeBeamForces(run.model, run.model.cycle == 0 ? 0.0 : run.dt).strainEnergy;
+                        }});
+  }
+  if (!st.cables.empty()) {
+    c.stages.push_back({"cable-forces", [&run] {
+                          const CableStepTotals t = computeCableForces(run.model, run.model.cycle == 0 ? 0.0 : run.dt);
+                          run.step.strainEnergy += t.strainEnergy;
+                          run.energy.addDissipation(0.0, 0.0, t.plasticWork);
+                        }});
+  }
+  if (!st.beams.empty()) {
+    c.stages.push_back({"beam-motion",
+                        [&run] {
+                          run.step.merge(integrateBeamNodes(run.model, run.dt, run.massDamping, run.settings.localDamping));
+                        },
+                        StepPart::Motion});
+  }
+  if (!st.cables.empty()) {
+    c.stages.push_back({"cable-motion",
+                        [&run] {
+                          run.step.merge(integrateCableNodes(run.model, run.dt, run.massDamping, run.settings.localDamping));
+                        },
+                        StepPart::Motion});
+  }
   return c;
 }
 

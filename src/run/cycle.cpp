@@ -382,7 +382,8 @@ void Cycle::recordHistories(bool initial) {
     // this step from the positions at its start.
     // The fluid's state is that the step's flow stage left, after the motion, at `time` too.
     const bool beamPosition = h.quantity == HistoryQuantity::BeamDisplacementX ||
-                              h.quantity == HistoryQuantity::BeamDisplacementY || h.quantity == HistoryQuantity::BeamRotation;
+                              h.quantity == HistoryQuantity::BeamDisplacementY || h.quantity == HistoryQuantity::BeamRotation ||
+                              h.quantity == HistoryQuantity::CableDisplacement;
     const bool block = subject == HistorySubject::Block || subject == HistorySubject::Gridpoint ||
                        subject == HistorySubject::Fluid || beamPosition;
     if (initial && !block) continue;
@@ -547,6 +548,8 @@ void Cycle::beginPhase(const PhaseChanges& changes, const std::string& phaseName
       }
       for (BeamTie& t : model_.structures.ties)
         if (t.zone < 0 && t.block == b) t.local = rotated(t.local, c, s);
+      for (CableNodes::Hold& hold : model_.structures.cableNodes.hold)
+        if (hold.zone < 0 && hold.block == b) hold.local = rotated(hold.local, c, s);
       bl.rotation[b] = 0.0;
     }
     for (int i = 0; i < g.size(); ++i) g.initialPosition[i] = g.position[i];
@@ -654,6 +657,14 @@ void Cycle::excavate(const ExcavationRegion& region) {
                        "': give the history a point in a zone that stays");
     h.zone = done.newIndex[h.zone];
   }
+  // A cable node whose zone is dug out is ungrouted from then on; the others follow their zone.
+  for (CableNodes::Hold& hold : model_.structures.cableNodes.hold) {
+    if (hold.zone < 0) continue;
+    hold.zone = done.newIndex[hold.zone];
+    if (hold.zone < 0) hold.block = -1;
+  }
+  for (std::size_t i = 0; i < model_.structures.cableNodes.hold.size(); ++i)
+    if (model_.structures.cableNodes.hold[i].block < 0) model_.structures.cableNodes.bondForce[i] = 0.0;
   // A tie whose zone is dug out holds nothing any more; the others follow their zone's new number.
   for (BeamTie& t : model_.structures.ties) {
     if (t.zone < 0 || t.broken) continue;
@@ -691,6 +702,12 @@ void Cycle::excavateRigidBlocks(const ExcavationRegion& region) {
     if (t.zone < 0 && !t.broken && std::find(gone.begin(), gone.end(), t.block) != gone.end()) {
       t.broken = true;
       t.force = {};
+    }
+  CableNodes& cables = model_.structures.cableNodes;
+  for (int i = 0; i < cables.size(); ++i)
+    if (cables.hold[i].zone < 0 && std::find(gone.begin(), gone.end(), cables.hold[i].block) != gone.end()) {
+      cables.hold[i].block = -1;
+      cables.bondForce[i] = 0.0;
     }
   // Its motion and the elastic energy of its joints leave the model without work; its contacts
   // go with a rescan, which no longer pairs it with anything.

@@ -63,6 +63,10 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::BeamRotation, "beam.rotation", S::Beam, "rad", "rotation of the beam's node nearest the point, counter-clockwise positive"},
       {Q::BeamAxialForce, "beam.axial_force", S::Beam, "N/m", "axial force of the beam's element nearest the point, tension positive"},
       {Q::BeamShearForce, "beam.shear_force", S::Beam, "N/m", "shear force dM/ds of the beam's element nearest the point (s along the beam)"},
+      {Q::CableAxialForce, "cable.axial_force", S::Cable, "N/m", "axial force of the cable's element nearest the point, tension positive"},
+      {Q::CableDisplacement, "cable.displacement", S::Cable, "m", "displacement along the cable (first point towards last) of its node nearest the point"},
+      {Q::CableSlip, "cable.slip", S::Cable, "m", "slip of the cable's node nearest the point relative to the rock, along the cable"},
+      {Q::CableBondForce, "cable.bond_force", S::Cable, "N/m", "the grout's force on the cable's node nearest the point, along the cable"},
       {Q::BeamMoment, "beam.moment", S::Beam, "N m/m", "bending moment E I kappa of the beam's element nearest the point, linear between its ends, at the point's projection on it"},
   };
   return table;
@@ -196,6 +200,16 @@ double beamMeasure(const Model& m, const HistorySpec& h) {
   }
 }
 
+double cableMeasure(const Model& m, const HistorySpec& h) {
+  const CableNodes& nd = m.structures.cableNodes;
+  switch (h.quantity) {
+    case HistoryQuantity::CableAxialForce: return m.structures.cableElements.axialForce[h.cableElement];
+    case HistoryQuantity::CableDisplacement: return nd.displacement[h.cableNode];
+    case HistoryQuantity::CableSlip: return nd.slip[h.cableNode];
+    default: return nd.bondForce[h.cableNode];
+  }
+}
+
 }  // namespace
 
 bool appendHistorySample(HistorySeries& series, double t, double value, std::size_t limit) {
@@ -252,6 +266,7 @@ double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) 
       switch (findHistorySubject(h.quantity)) {
         case HistorySubject::Fluid: return fluidMeasure(m, h);
         case HistorySubject::Beam: return beamMeasure(m, h);
+        case HistorySubject::Cable: return cableMeasure(m, h);
         default: return jointMeasure(m, h);
       }
   }

@@ -24,13 +24,15 @@ enum class HistoryQuantity {
   BlockAccelerationX, BlockAccelerationY, GridpointAccelerationX, GridpointAccelerationY,
   DomainPressure, KnotFlow, KnotAperture, FluidInflow, FluidOutflow, FluidContent, FluidImbalance,
   BeamDisplacementX, BeamDisplacementY, BeamRotation, BeamAxialForce, BeamShearForce, BeamMoment,
+  CableAxialForce, CableDisplacement, CableSlip, CableBondForce,
 };
 
 
 // Fluid: the fluid's account (fluid.*), or the domain or knot nearest a point at each sample
 // (domain.*, knot.*): the network changes with the contacts, so a point, not an id, names them.
 // Beam: the node (displacements, rotation) or the element (forces) of a named beam nearest a point.
-enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone, Fluid, Beam };
+// Cable: the node (displacement, slip, bond force) or element (axial force) of a named cable nearest a point.
+enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone, Fluid, Beam, Cable };
 
 struct HistoryQuantityInfo {
   HistoryQuantity quantity;
@@ -57,6 +59,8 @@ struct HistorySpec {
   Vec2 point;           // Fluid subject: domain.* and knot.* quantities; Beam: where along the element
   int beamNode = -1;    // Beam subject: the node nearest the point
   int beamElement = -1; // and the element nearest it
+  int cableNode = -1;   // Cable subject: the node nearest the point
+  int cableElement = -1;
 };
 
 // Acceleration quantities are formed by the cycle from the velocity they are the rate of:

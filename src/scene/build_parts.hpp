@@ -42,6 +42,7 @@ int addBeam(Model& model, const BeamDefinition& definition);
 // The beam named `name`, or an error on `beam` of `origin`; the node of a beam nearest a point
 // (at the positions displacements are measured from).
 int beamNamed(const Model& model, const Origin& origin, const std::string& name);
+int cableNamed(const Model& model, const Origin& origin, const std::string& name);
 int nearestBeamNode(const Model& model, int beam, Vec2 point);
 // A [[beam_node]] resolved to the node of its beam nearest its point.
 PhaseChanges::BeamNodeChange beamNodeChange(const Model& model, const BeamNodeDefinition& definition);

@@ -6,6 +6,7 @@
 #include "core/shown.hpp"
 #include "scene/build_parts.hpp"
 #include "structure/beams.hpp"
+#include "structure/cables.hpp"
 
 namespace vdec {
 
@@ -123,6 +124,58 @@ void applyBeamNodeChange(Model& m, const PhaseChanges::BeamNodeChange& c) {
   nd.fixed[c.node] |= c.fix;
 }
 
+namespace {
+
+void addCable(Model& m, const CableDefinition& d) {
+  Structures& st = m.structures;
+  for (const Cable& other : st.cables)
+    if (other.name == d.name) d.origin.fail("name", "cable '" + d.name + "' is defined twice");
+  int material = -1;
+  for (int i = 0; i < static_cast<int>(st.cableMaterials.size()); ++i)
+    if (st.cableMaterials[i].name == d.material) material = i;
+  if (material < 0) d.origin.fail("material", "no [[cable_material]] is named '" + d.material + "'");
+  const CableMaterial& mat = st.cableMaterials[material];
+  CableNodes& nd = st.cableNodes;
+  CableElements& el = st.cableElements;
+  if (static_cast<double>(d.elements) + nd.size() > 1e6)
+    d.origin.fail("elements", "cable '" + d.name + "' would bring the cables' nodes past 1e6: use fewer elements");
+  const int index = static_cast<int>(st.cables.size());
+  Cable cable;
+  cable.name = d.name;
+  cable.material = material;
+  cable.direction = (1.0 / norm(d.to - d.from)) * (d.to - d.from);
+  cable.firstNode = nd.size();
+  cable.firstElement = el.size();
+  for (int i = 0; i <= d.elements; ++i) {
+    nd.cable.push_back(index);
+    nd.position.push_back(d.from + (static_cast<double>(i) / d.elements) * (d.to - d.from));
+    for (auto* v : {&nd.displacement, &nd.velocity, &nd.force, &nd.forceScale, &nd.appliedForce, &nd.mass, &nd.length,
+                    &nd.slip, &nd.bondForce})
+      v->push_back(0.0);
+    nd.fixed.push_back(0);
+    nd.slipping.push_back(0);
+    nd.hold.push_back({});
+  }
+  cable.nodeCount = d.elements + 1;
+  const double length = norm(d.to - d.from) / d.elements;
+  for (int i = 0; i < d.elements; ++i) {
+    const int a = cable.firstNode + i, b = a + 1;
+    el.node.push_back({a, b});
+    el.cable.push_back(index);
+    el.restLength.push_back(length);
+    el.axialForce.push_back(0.0);
+    for (const int n : {a, b}) {
+      nd.mass[n] += 0.5 * mat.density * mat.area * length;
+      nd.length[n] += 0.5 * length;
+    }
+  }
+  cable.elementCount = d.elements;
+  st.cables.push_back(cable);
+  installCable(m, index);
+}
+
+}  // namespace
+
 void addStructures(Model& m, const SceneDefinition& s) {
   Structures& st = m.structures;
   for (const BeamMaterialDefinition& d : s.beamMaterials) {
@@ -142,6 +195,39 @@ void addStructures(Model& m, const SceneDefinition& s) {
     }
   }
   for (const BeamNodeDefinition& d : s.beamNodes) applyBeamNodeChange(m, beamNodeChange(m, d));
+  for (const CableMaterialDefinition& d : s.cableMaterials) {
+    for (const CableMaterial& other : st.cableMaterials)
+      if (other.name == d.material.name) d.origin.fail("name", "cable material '" + d.material.name + "' is defined twice");
+    CableMaterial mat = d.material;
+    mat.area /= d.spacing;
+    mat.bondStiffness /= d.spacing;
+    mat.bondStrength /= d.spacing;
+    mat.yieldTension /= d.spacing;
+    mat.yieldCompression /= d.spacing;
+    st.cableMaterials.push_back(mat);
+  }
+  for (const CableDefinition& d : s.cables) addCable(m, d);
+  for (const CableNodeDefinition& d : s.cableNodes) {
+    const int cable = cableNamed(m, d.origin, d.cable);
+    const Cable& c = st.cables[cable];
+    CableNodes& nd = st.cableNodes;
+    int node = c.firstNode;
+    for (int n = c.firstNode; n < c.firstNode + c.nodeCount; ++n)
+      if (norm(nd.position[n] - d.point) < norm(nd.position[node] - d.point)) node = n;
+    const double element = st.cableElements.restLength[c.firstElement];
+    if (norm(nd.position[node] - d.point) > 0.5 * element)
+      d.origin.fail("point", "lies " + shown(norm(nd.position[node] - d.point)) + " m from the nearest node of cable '" +
+                                 d.cable + "', more than half an element: give a point on the cable");
+    nd.appliedForce[node] += d.force;
+    nd.fixed[node] |= d.fix ? 1 : 0;
+  }
+}
+
+int cableNamed(const Model& m, const Origin& origin, const std::string& name) {
+  const std::vector<Cable>& cables = m.structures.cables;
+  for (int i = 0; i < static_cast<int>(cables.size()); ++i)
+    if (cables[i].name == name) return i;
+  origin.fail("cable", "no [[cable]] is named '" + name + "'");
 }
 
 }  // namespace vdec

@@ -427,6 +427,19 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
     h.beamElement = b.firstElement;
     for (int e = b.firstElement; e < b.firstElement + b.elementCount; ++e)
       if (distance(e) < distance(h.beamElement)) h.beamElement = e;
+  } else if (info->subject == HistorySubject::Cable) {
+    const Structures& st = m.structures;
+    const Cable& c = st.cables[cableNamed(m, d.origin, d.cable)];
+    h.point = *d.point;
+    h.cableNode = c.firstNode;
+    for (int n = c.firstNode; n < c.firstNode + c.nodeCount; ++n)
+      if (norm(st.cableNodes.position[n] - h.point) < norm(st.cableNodes.position[h.cableNode] - h.point)) h.cableNode = n;
+    h.cableElement = c.firstElement;
+    auto mid = [&](int e) {
+      return 0.5 * (st.cableNodes.position[st.cableElements.node[e][0]] + st.cableNodes.position[st.cableElements.node[e][1]]);
+    };
+    for (int e = c.firstElement; e < c.firstElement + c.elementCount; ++e)
+      if (norm(mid(e) - h.point) < norm(mid(h.cableElement) - h.point)) h.cableElement = e;
   } else if (info->subject == HistorySubject::Joint) {
     h.block = blockNamed(m, d.origin, "blocks", d.blocks[0]);
     h.otherBlock = blockNamed(m, d.origin, "blocks", d.blocks[1]);

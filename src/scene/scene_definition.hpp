@@ -165,6 +165,32 @@ struct BeamDefinition {
   Origin origin;
 };
 
+// A [[cable_material]]: as given (per cable); the builder divides area, bond stiffness and bond
+// strength by the spacing.
+struct CableMaterialDefinition {
+  CableMaterial material;
+  double spacing = 1.0;
+  Origin origin;
+};
+
+// A [[cable]]: a straight cable between two points, cut into equal elements.
+struct CableDefinition {
+  std::string name;
+  std::string material;
+  Vec2 from, to;
+  int elements = 1;
+  Origin origin;
+};
+
+// A [[cable_node]]: the node of a cable nearest a point, loaded along the cable or held.
+struct CableNodeDefinition {
+  std::string cable;
+  Vec2 point;
+  double force = 0.0;
+  bool fix = false;
+  Origin origin;
+};
+
 // A [[beam_node]]: the node of a beam nearest a point, loaded or held.
 struct BeamNodeDefinition {
   std::string beam;
@@ -186,6 +212,7 @@ struct HistoryDefinition {
   std::string quantity;              // as in docs/user-manual/histories.md, e.g. "block.x"
   std::string block;                 // block, gridpoint and zone quantities
   std::string beam;                  // beam quantities
+  std::string cable;                 // cable quantities
   std::array<std::string, 2> blocks; // joint quantities
   std::optional<Vec2> point;         // gridpoint and zone quantities
   int every = 1;
@@ -252,6 +279,9 @@ struct SceneDefinition {
   std::vector<BeamMaterialDefinition> beamMaterials;
   std::vector<BeamDefinition> beams;
   std::vector<BeamNodeDefinition> beamNodes;
+  std::vector<CableMaterialDefinition> cableMaterials;
+  std::vector<CableDefinition> cables;
+  std::vector<CableNodeDefinition> cableNodes;
   std::vector<JointAssignmentDefinition> jointAssignments;
   std::vector<HistoryDefinition> histories;
   std::vector<PhaseDefinition> phases;

@@ -7,7 +7,8 @@
 
 #include "core/errors.hpp"
 #include "core/shown.hpp"
-#include "geometry/polygon.hpp"
+#include "structure/lumped_motion.hpp"
+#include "structure/rock_point.hpp"
 
 namespace vdec {
 
@@ -37,33 +38,6 @@ Vec2 nodeTangent(const Model& m, int node) {
   add(before);
   add(after);
   return (1.0 / norm(sum)) * sum;
-}
-
-// Where a tie holds the rock now, its velocity, and the centre of its host (to tell which side of
-// the beam the rock is on).
-struct HostPoint {
-  Vec2 position, velocity, centre, arm;
-};
-
-HostPoint hostPoint(const Model& m, const BeamTie& t) {
-  HostPoint h;
-  if (t.zone < 0) {
-    const Blocks& bl = m.blocks;
-    const double c = std::cos(bl.rotation[t.block]), s = std::sin(bl.rotation[t.block]);
-    h.arm = rotated(t.local, c, s);
-    h.position = bl.centroid[t.block] + h.arm;
-    h.velocity = bl.velocity[t.block] + bl.angularVelocity[t.block] * Vec2{-h.arm.y, h.arm.x};
-    h.centre = bl.centroid[t.block];
-    return h;
-  }
-  const Gridpoints& g = m.gridpoints;
-  for (int k = 0; k < 3; ++k) {
-    const int p = m.zones.gridpoint[t.zone][k];
-    h.position += t.weight[k] * g.position[p];
-    h.velocity += t.weight[k] * g.velocity[p];
-    h.centre += (1.0 / 3.0) * g.position[p];
-  }
-  return h;
 }
 
 // An element's forces from its nodes' positions and rotations, co-rotational: the chord's rotation
@@ -128,7 +102,7 @@ BeamStepTotals computeBeamForces(Model& m, double dt) {
   std::fill(nd.tieForce.begin(), nd.tieForce.end(), Vec2{});
   for (BeamTie& t : st.ties) {
     if (t.broken) continue;
-    const HostPoint host = hostPoint(m, t);
+    const RockPointNow host = rockPointNow(m, t);
     const Vec2 s = nodeTangent(m, t.node), n{-s.y, s.x};
     const Vec2 step = dt * (nd.velocity[t.node] - host.velocity);
     double fn = dot(t.force, n) - t.normalStiffness * dot(step, n);
@@ -146,12 +120,7 @@ BeamStepTotals computeBeamForces(Model& m, double dt) {
     if (t.slipping) fs = fs > 0.0 ? strength : -strength;
     t.force = fn * n + fs * s;
     nd.tieForce[t.node] += t.force;
-    if (t.zone < 0) {
-      m.blocks.boundaryForce[t.block] -= t.force;
-      m.blocks.boundaryMoment[t.block] -= cross(host.arm, t.force);
-    } else {
-      for (int k = 0; k < 3; ++k) m.gridpoints.tractionForce[m.zones.gridpoint[t.zone][k]] -= t.weight[k] * t.force;
-    }
+    loadRock(m, t, host, -t.force);
   }
   return totals;
 }
@@ -159,24 +128,13 @@ BeamStepTotals computeBeamForces(Model& m, double dt) {
 MotionStepTotals integrateBeamNodes(Model& m, double dt, double alpha, double local) {
   MotionStepTotals totals;
   BeamNodes& nd = m.structures.nodes;
-  const double lose = 1.0 - 0.5 * alpha * dt, keep = 1.0 / (1.0 + 0.5 * alpha * dt);
-  // One degree of freedom, as the rigid blocks' (1.3-21). The elements' forces are internal
-  // (their strain energy is counted); gravity, loads and the ties' forces do external work (the
-  // ties' springs and slip are thus in the work done on the nodes and on the rock together).
+  // One degree of freedom at a time. The elements' forces are internal (their strain energy is
+  // counted); gravity, loads and the ties' forces do external work (the ties' springs and slip
+  // are thus in the work done on the nodes and on the rock together).
   auto advance = [&](bool held, double v0, double inertia, double internal, double body, double& unbalanced) {
     if (held) return 0.0;
-    const double load = internal + body;
-    unbalanced += load * load;
-    const double damping = localDampingForce(local, load, v0);
-    const double v1 = keep * (lose * v0 + (dt / inertia) * (load + damping));
-    const double vbar = 0.5 * (v0 + v1);
-    totals.kineticEnergy += 0.25 * inertia * (v0 * v0 + v1 * v1);
-    totals.kineticLag += 0.5 * inertia * v0 * v1;
-    totals.dampingDissipation += alpha * inertia * vbar * vbar * dt - damping * vbar * dt;
-    totals.dampingPower += inertia * vbar * vbar;
-    totals.kineticRate += inertia * vbar * (v1 - v0) / dt;
-    totals.externalWork += body * v1 * dt;
-    return v1;
+    unbalanced += (internal + body) * (internal + body);
+    return advanceLumped(totals, v0, inertia, internal, body, alpha, local, dt);
   };
   for (int i = 0; i < nd.size(); ++i) {
     if (!m.structures.beams[nd.beam[i]].installed) continue;
@@ -243,68 +201,6 @@ double beamTimeStep(const Model& m, double frac, double zoneFraction) {
   return dt;
 }
 
-namespace {
-
-double segmentDistance(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 d = b - a;
-  const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
-  return norm(p - (a + t * d));
-}
-
-// Distance from a point to a triangle (0 inside) and the point's barycentric weights, clamped
-// to the triangle.
-double triangleDistance(Vec2 p, const std::array<Vec2, 3>& v, std::array<double, 3>& weight) {
-  const double area = cross(v[1] - v[0], v[2] - v[0]);
-  for (int k = 0; k < 3; ++k) weight[k] = cross(v[(k + 1) % 3] - p, v[(k + 2) % 3] - p) / area;
-  if (weight[0] >= 0.0 && weight[1] >= 0.0 && weight[2] >= 0.0) return 0.0;
-  double best = INFINITY;
-  for (int k = 0; k < 3; ++k) best = std::min(best, segmentDistance(p, v[k], v[(k + 1) % 3]));
-  double sum = 0.0;
-  for (double& w : weight) sum += (w = std::max(w, 0.0));
-  for (double& w : weight) w /= sum;
-  return best;
-}
-
-// The rock a point of the reference configuration (the input, or the last displacement reset)
-// belongs to: the zone (deformable block) or rigid block holding it, else the nearest within the
-// rounding length (a lining on an excavated face lies on the blocks' edge). Excavated rock is none.
-// Returns the distance to it (infinite: none).
-double findHost(const Model& m, Vec2 point, BeamTie& host) {
-  double nearest = INFINITY;
-  const Blocks& bl = m.blocks;
-  for (int b = 0; b < bl.size(); ++b) {
-    if (bl.deformable[b] || bl.excavated(b)) continue;
-    Polygon p;
-    const int first = bl.firstVertex[b], last = first + bl.vertexCount[b];
-    for (int v = first; v < last; ++v) p.push_back(bl.initialCentroid[b] + m.vertices.localPosition[v]);
-    double distance = containsPoint(p, point) ? 0.0 : INFINITY;
-    for (int v = 0; distance > 0.0 && v < static_cast<int>(p.size()); ++v)
-      distance = std::min(distance, segmentDistance(point, p[v], p[(v + 1) % p.size()]));
-    if (distance < nearest) {
-      nearest = distance;
-      host = {};
-      host.block = b;
-      host.local = point - bl.initialCentroid[b];
-    }
-  }
-  for (int z = 0; z < m.zones.size(); ++z) {
-    std::array<Vec2, 3> corner;
-    for (int k = 0; k < 3; ++k) corner[k] = m.gridpoints.initialPosition[m.zones.gridpoint[z][k]];
-    std::array<double, 3> weight;
-    const double distance = triangleDistance(point, corner, weight);
-    if (distance < nearest) {
-      nearest = distance;
-      host = {};
-      host.block = m.zones.block[z];
-      host.zone = z;
-      host.weight = weight;
-    }
-  }
-  return nearest;
-}
-
-}  // namespace
-
 void installBeam(Model& m, int index, const std::string& when) {
   Structures& st = m.structures;
   Beam& beam = st.beams[index];
@@ -318,7 +214,7 @@ void installBeam(Model& m, int index, const std::string& when) {
     if (!beam.tied) continue;
     const Vec2 point = nd.initialPosition[n];
     BeamTie t;
-    const double distance = findHost(m, point, t);
+    const double distance = findRockPoint(m, point, t);
     if (!(distance <= m.roundingLength))
       throw SceneError((when.empty() ? "" : when + ": ") + "beam '" + beam.name + "': its node at (" + shown(point.x) + ", " + shown(point.y) +
                        ") lies on no block (the nearest is " + shown(distance) + " m away, beyond the rounding length): "
@@ -330,7 +226,7 @@ void installBeam(Model& m, int index, const std::string& when) {
     t.friction = mat.tieFriction;
     t.tension = mat.tieTension * nd.length[n];
     // Installed where the rock is now: the node on its host's point as the rock has moved.
-    nd.position[n] = hostPoint(m, t).position;
+    nd.position[n] = rockPointNow(m, t).position;
     st.ties.push_back(t);
   }
   // Stress-free as placed.

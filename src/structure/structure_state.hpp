@@ -93,13 +93,75 @@ struct Beam {
   bool installed = false;
 };
 
+// A [[cable_material]], per unit thickness (the section, the grout's bond stiffness and strength
+// over the out-of-plane spacing of the cables).
+struct CableMaterial {
+  std::string name;
+  double young = 0.0;            // E, Pa
+  double area = 0.0;             // A / spacing, m^2 per m
+  double density = 0.0;          // kg/m^3
+  double yieldTension = INFINITY;      // N per m: the axial force's bounds
+  double yieldCompression = INFINITY;
+  double bondStiffness = 0.0;    // k_bond / spacing, N/m per m of cable per m of thickness
+  double bondStrength = INFINITY;  // s_bond / spacing, N per m of cable per m of thickness
+};
+
+// A straight cable of axial elements along `direction`; its nodes move along it only (no
+// lateral restraint, 1.4.4.3), each bonded by the grout to the rock that holds it.
+struct Cable {
+  std::string name;
+  int material = -1;
+  Vec2 direction;                // unit, first point to last
+  int firstNode = 0, nodeCount = 0;
+  int firstElement = 0, elementCount = 0;
+  bool installed = false;
+};
+
+// Cable nodes, structure of arrays. The grout's hold on the rock: block, local, zone, weight as a
+// beam tie's (block -1: a node outside the rock, ungrouted).
+struct CableNodes {
+  std::vector<int> cable;
+  std::vector<Vec2> position;          // as installed
+  std::vector<double> displacement;    // along the cable since installation
+  std::vector<double> velocity;        // along the cable
+  std::vector<double> force;           // of the elements, each step
+  std::vector<double> forceScale;      // the sizes of the forces on it, each step
+  std::vector<double> appliedForce;    // along the cable
+  std::vector<double> mass;
+  std::vector<double> length;          // tributary
+  std::vector<std::uint8_t> fixed;     // held at rest along the cable
+  std::vector<double> slip;            // along the cable, relative to the rock, since installation
+  std::vector<double> bondForce;       // the grout's on the node, along the cable
+  std::vector<std::uint8_t> slipping;  // at its strength in the last step
+  struct Hold {
+    int block = -1;
+    Vec2 local;
+    int zone = -1;
+    std::array<double, 3> weight{};
+  };
+  std::vector<Hold> hold;
+  int size() const { return static_cast<int>(cable.size()); }
+};
+
+struct CableElements {
+  std::vector<std::array<int, 2>> node;
+  std::vector<int> cable;
+  std::vector<double> restLength;
+  std::vector<double> axialForce;      // N per m, tension positive
+  int size() const { return static_cast<int>(node.size()); }
+};
+
 struct Structures {
   std::vector<BeamMaterial> materials;
   std::vector<Beam> beams;
   BeamNodes nodes;
   BeamElements elements;
   std::vector<BeamTie> ties;
-  bool any() const { return !beams.empty(); }
+  std::vector<CableMaterial> cableMaterials;
+  std::vector<Cable> cables;
+  CableNodes cableNodes;
+  CableElements cableElements;
+  bool any() const { return !beams.empty() || !cables.empty(); }
 };
 
 }  // namespace vdec

@@ -880,3 +880,13 @@ def test_lining_ring_in_a_finite_medium_with_interface_springs_is_the_three_spri
     assert got["wall_displacement"] == pytest.approx(expected * (f_l + 1.0 / k), rel=1e-12, abs=0)
     with pytest.raises(ValueError, match="outer_radius"):
         st.lining_ring(**args, outer_radius=0.5)
+
+
+@REQ
+def test_discrete_slip_scalar_forms_are_the_chains_segment_and_head():
+    args = dict(F0=1e4, L=2.0, EA=1e8, k_bond=1e8, s_bond=8000.0, n=20)
+    cable = st.cable_discrete_slip(**args)
+    assert st.cable_discrete_slip_segment_force(0.05, **args) == cable["force"][0]
+    assert st.cable_discrete_slip_segment_force(0.95, **args) == cable["force"][9]
+    assert st.cable_discrete_slip_segment_force(2.0, **args) == cable["force"][19]
+    assert st.cable_discrete_slip_head_displacement(**args) == cable["displacement"][0]

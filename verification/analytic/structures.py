@@ -382,6 +382,22 @@ def cable_discrete_slip(*, F0, L, EA, k_bond, s_bond, n):
     raise ValueError(f"F0 = {F0}: no consistent slipped length found (F0 at the capacity s_bond L = {s_bond * L}?)")
 
 
+
+def cable_discrete_slip_segment_force(x, *, F0, L, EA, k_bond, s_bond, n):
+    """The segment force of cable_discrete_slip in the segment holding x (0 <= x <= L; a node
+    belongs to the segment beyond it, the last node to the last segment): the scalar form a
+    benchmark compares one element with."""
+    x = _scalar("x", x)
+    _along(x, _positive("L (cable length)", L), "cable")
+    cable = cable_discrete_slip(F0=F0, L=L, EA=EA, k_bond=k_bond, s_bond=s_bond, n=n)
+    segment = min(int(x / (L / n)), n - 1)
+    return float(cable["force"][segment])
+
+
+def cable_discrete_slip_head_displacement(*, F0, L, EA, k_bond, s_bond, n):
+    """The head's displacement (towards the head) of cable_discrete_slip."""
+    return float(cable_discrete_slip(F0=F0, L=L, EA=EA, k_bond=k_bond, s_bond=s_bond, n=n)["displacement"][0])
+
 # ================================================================ frame beams (Euler-Bernoulli)
 #
 # Deflection w positive in the direction of the load, rotation dw/dx, moment M = -EI w''.

@@ -1,0 +1,128 @@
+#include "structure/cables.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "structure/lumped_motion.hpp"
+#include "structure/rock_point.hpp"
+
+namespace vdec {
+
+CableStepTotals computeCableForces(Model& m, double dt) {
+  CableStepTotals totals;
+  Structures& st = m.structures;
+  CableNodes& nd = st.cableNodes;
+  CableElements& el = st.cableElements;
+  std::fill(nd.force.begin(), nd.force.end(), 0.0);
+  std::fill(nd.forceScale.begin(), nd.forceScale.end(), 0.0);
+  for (int e = 0; e < el.size(); ++e) {
+    if (!st.cables[el.cable[e]].installed) continue;
+    const CableMaterial& mat = st.cableMaterials[st.cables[el.cable[e]].material];
+    const int a = el.node[e][0], b = el.node[e][1];
+    const double k = mat.young * mat.area / el.restLength[e];
+    const double stretch = dt * (nd.velocity[b] - nd.velocity[a]);
+    const double trial = el.axialForce[e] + k * stretch;
+    const double force = std::clamp(trial, -mat.yieldCompression, mat.yieldTension);
+    // The yield takes the part of the stretch the force does not follow, at the force it holds.
+    if (force != trial) totals.plasticWork += std::abs(force * (stretch - (force - el.axialForce[e]) / k));
+    el.axialForce[e] = force;
+    nd.force[a] += force;  // tension pulls the first node towards the second
+    nd.force[b] -= force;
+    nd.forceScale[a] += std::abs(force);
+    nd.forceScale[b] += std::abs(force);
+    totals.strainEnergy += 0.5 * force * force / k;
+  }
+  for (int i = 0; i < nd.size(); ++i) {
+    const Cable& cable = st.cables[nd.cable[i]];
+    if (!cable.installed || nd.hold[i].block < 0) continue;
+    const CableMaterial& mat = st.cableMaterials[cable.material];
+    const RockPointNow rock = rockPointNow(m, nd.hold[i]);
+    const double slipRate = nd.velocity[i] - dot(rock.velocity, cable.direction);
+    nd.slip[i] += dt * slipRate;
+    const double strength = mat.bondStrength * nd.length[i];
+    double bond = nd.bondForce[i] - mat.bondStiffness * nd.length[i] * dt * slipRate;
+    nd.slipping[i] = std::abs(bond) > strength;
+    if (nd.slipping[i]) bond = bond > 0.0 ? strength : -strength;
+    nd.bondForce[i] = bond;
+    loadRock(m, nd.hold[i], rock, -bond * cable.direction);
+  }
+  return totals;
+}
+
+MotionStepTotals integrateCableNodes(Model& m, double dt, double alpha, double local) {
+  MotionStepTotals totals;
+  Structures& st = m.structures;
+  CableNodes& nd = st.cableNodes;
+  for (int i = 0; i < nd.size(); ++i) {
+    const Cable& cable = st.cables[nd.cable[i]];
+    if (!cable.installed || nd.fixed[i]) continue;
+    // As a rigid block's degree of freedom (1.3-21); the elements' force is internal, gravity
+    // along the cable, the loads and the grout's force external (the grout's springs and slip
+    // are in the work done on node and rock together).
+    const double internal = nd.force[i];
+    const double body = nd.mass[i] * dot(m.gravity, cable.direction) + nd.appliedForce[i] + nd.bondForce[i];
+    const double v1 = advanceLumped(totals, nd.velocity[i], nd.mass[i], internal, body, alpha, local, dt);
+    totals.largestUnbalancedForce = std::max(totals.largestUnbalancedForce, std::abs(internal + body));
+    totals.forceScaleSum += nd.forceScale[i] + std::abs(nd.bondForce[i]);
+    ++totals.forceCount;
+    nd.velocity[i] = v1;
+    nd.displacement[i] += dt * v1;
+    totals.largestDisplacement = std::max(totals.largestDisplacement, std::abs(v1) * dt);
+  }
+  return totals;
+}
+
+double cableTimeStep(const Model& m, double frac, double zoneFraction) {
+  const Structures& st = m.structures;
+  const CableNodes& nd = st.cableNodes;
+  const CableElements& el = st.cableElements;
+  std::vector<double> row(nd.size(), 0.0);
+  for (int e = 0; e < el.size(); ++e) {
+    if (!st.cables[el.cable[e]].installed) continue;
+    const CableMaterial& mat = st.cableMaterials[st.cables[el.cable[e]].material];
+    const double k = mat.young * mat.area / el.restLength[e];
+    const int a = el.node[e][0], b = el.node[e][1];
+    const double across = k / std::sqrt(nd.mass[a] * nd.mass[b]);
+    row[a] += k / nd.mass[a] + across;
+    row[b] += k / nd.mass[b] + across;
+  }
+  std::vector<double> blockStiffness(m.blocks.size(), 0.0), pointStiffness(m.gridpoints.size(), 0.0);
+  for (int i = 0; i < nd.size(); ++i) {
+    const Cable& cable = st.cables[nd.cable[i]];
+    if (!cable.installed || nd.hold[i].block < 0) continue;
+    const double k = st.cableMaterials[cable.material].bondStiffness * nd.length[i];
+    row[i] += k / nd.mass[i];
+    const CableNodes::Hold& h = nd.hold[i];
+    if (h.zone < 0) blockStiffness[h.block] += k;
+    else
+      for (int c = 0; c < 3; ++c) pointStiffness[m.zones.gridpoint[h.zone][c]] += h.weight[c] * k;
+  }
+  double largest = 0.0;
+  for (const double r : row) largest = std::max(largest, r);
+  double dt = largest > 0.0 ? 0.9 * 2.0 / std::sqrt(largest) : INFINITY;
+  for (int b = 0; b < m.blocks.size(); ++b)
+    if (blockStiffness[b] > 0.0 && m.blocks.movesFreely(b)) dt = std::min(dt, frac * 2.0 * std::sqrt(m.blocks.mass[b] / blockStiffness[b]));
+  for (int i = 0; i < m.gridpoints.size(); ++i)
+    if (pointStiffness[i] > 0.0)
+      dt = std::min(dt, zoneFraction * 2.0 * std::sqrt(m.gridpoints.mass[i] / (m.gridpoints.stiffness[i] + pointStiffness[i])));
+  return dt;
+}
+
+void installCable(Model& m, int index) {
+  Structures& st = m.structures;
+  Cable& cable = st.cables[index];
+  CableNodes& nd = st.cableNodes;
+  for (int i = cable.firstNode; i < cable.firstNode + cable.nodeCount; ++i) {
+    CableNodes::Hold hold;
+    if (findRockPoint(m, nd.position[i], hold) <= m.roundingLength) {
+      nd.hold[i] = hold;
+      nd.position[i] = rockPointNow(m, hold).position;
+    }
+    nd.displacement[i] = nd.velocity[i] = nd.slip[i] = nd.bondForce[i] = 0.0;
+  }
+  m.blocks.boundaryForce.resize(m.blocks.size());
+  m.blocks.boundaryMoment.resize(m.blocks.size());
+  cable.installed = true;
+}
+
+}  // namespace vdec

@@ -1,0 +1,26 @@
+#pragma once
+// Grouted cables (NUREG/CR-5429 1.4.4.3, Fig. 1.4-14): axial elements along a straight cable, its
+// nodes moving along it with masses lumped at them, each bonded to the rock by the grout, a
+// spring-slider per unit length (1.4-42 to 1.4-44); the elements yield in tension and compression.
+#include <string>
+
+#include "core/model.hpp"
+#include "motion/motion_totals.hpp"
+
+namespace vdec {
+
+struct CableStepTotals {
+  double strainEnergy = 0.0;    // of the elements
+  double plasticWork = 0.0;     // the elements' yield over the step
+};
+
+// The elements' and the grout's forces from the motion of the step before (dt; 0 at the first).
+CableStepTotals computeCableForces(Model& model, double dt);
+MotionStepTotals integrateCableNodes(Model& model, double dt, double alpha, double localDamping);
+// Gershgorin's bound on the nodes' axial chain with the grout, and the limits of the rock it holds.
+double cableTimeStep(const Model& model, double frac, double zoneFraction);
+// Puts cable `index` into the model: each node's grout holds the rock at its point (none outside
+// the rock: an ungrouted length), the node placed where that point is now.
+void installCable(Model& model, int index);
+
+}  // namespace vdec
