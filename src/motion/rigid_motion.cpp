@@ -69,7 +69,11 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha, double 
     double momentUnbalanced = 0.0;
     const double w = advance(driven & DriveRotation, bl.angularVelocity[b], bl.inertia[b], bl.moment[b], bodyMoment,
                              dashpotMoment, momentUnbalanced);
-    totals.largestUnbalancedForce = std::max(totals.largestUnbalancedForce, std::sqrt(unbalanced));
+    // The moment counts too, as the force at the block's reach that would make it: a block still
+    // turning is not in equilibrium, however small its unbalanced force.
+    const double reach = bl.boundingRadius[b];
+    const double turning = reach > 0.0 ? momentUnbalanced / (reach * reach) : 0.0;
+    totals.largestUnbalancedForce = std::max(totals.largestUnbalancedForce, std::sqrt(unbalanced + turning));
     bl.velocity[b] = v;
     bl.angularVelocity[b] = w;
     if (v.x != 0.0 || v.y != 0.0 || w != 0.0) {
