@@ -72,15 +72,18 @@ void emptied(FlowState& fs, FlowDomain& d) {
 void limitDrainage(FlowState& fs, double h) {
   // A partly saturated domain is at zero pressure, so it drains only under gravity; it passes
   // on at most what it holds, its outflows scaled alike, so that no content goes negative.
-  std::vector<double> out(fs.domains.size(), 0.0);
+  // Called every sub-step while a domain is partly saturated: one buffer kept between calls, holding
+  // each domain's outflow and then the factor on it.
+  static thread_local std::vector<double> scale;
+  scale.assign(fs.domains.size(), 0.0);
   for (const FlowKnot& k : fs.knots) {
-    if (k.flow > 0.0 && k.domain[0] >= 0) out[k.domain[0]] += k.flow * h;
-    if (k.flow < 0.0 && k.domain[1] >= 0) out[k.domain[1]] -= k.flow * h;
+    if (k.flow > 0.0 && k.domain[0] >= 0) scale[k.domain[0]] += k.flow * h;
+    if (k.flow < 0.0 && k.domain[1] >= 0) scale[k.domain[1]] -= k.flow * h;
   }
-  std::vector<double> scale(fs.domains.size(), 1.0);
   for (std::size_t d = 0; d < fs.domains.size(); ++d) {
     const FlowDomain& dom = fs.domains[d];
-    if (!dom.fixed && dom.content < dom.area && out[d] > dom.content) scale[d] = std::max(dom.content, 0.0) / out[d];
+    const double out = scale[d];
+    scale[d] = !dom.fixed && dom.content < dom.area && out > dom.content ? std::max(dom.content, 0.0) / out : 1.0;
   }
   for (FlowKnot& k : fs.knots) {
     const int from = k.flow > 0.0 ? k.domain[0] : k.domain[1];

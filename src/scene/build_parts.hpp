@@ -43,6 +43,7 @@ int addBeam(Model& model, const BeamDefinition& definition);
 // (at the positions displacements are measured from).
 int beamNamed(const Model& model, const Origin& origin, const std::string& name);
 int cableNamed(const Model& model, const Origin& origin, const std::string& name);
+int nearestCableNode(const Model& model, int cable, Vec2 point);
 int nearestBeamNode(const Model& model, int beam, Vec2 point);
 // A [[beam_node]] resolved to the node of its beam nearest its point.
 PhaseChanges::BeamNodeChange beamNodeChange(const Model& model, const BeamNodeDefinition& definition);

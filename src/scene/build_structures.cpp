@@ -106,9 +106,10 @@ int nearestBeamNode(const Model& m, int beam, Vec2 point) {
 
 PhaseChanges::BeamNodeChange beamNodeChange(const Model& m, const BeamNodeDefinition& d) {
   const Structures& st = m.structures;
-  const Beam& b = st.beams[beamNamed(m, d.origin, d.beam)];
+  const int beam = beamNamed(m, d.origin, d.beam);
+  const Beam& b = st.beams[beam];
   const BeamNodes& nd = st.nodes;
-  const int node = nearestBeamNode(m, beamNamed(m, d.origin, d.beam), d.point);
+  const int node = nearestBeamNode(m, beam, d.point);
   double longest = 0.0;
   for (int e = b.firstElement; e < b.firstElement + b.elementCount; ++e) longest = std::max(longest, st.elements.restLength[e]);
   if (norm(nd.initialPosition[node] - d.point) > 0.5 * longest)
@@ -211,9 +212,7 @@ void addStructures(Model& m, const SceneDefinition& s) {
     const int cable = cableNamed(m, d.origin, d.cable);
     const Cable& c = st.cables[cable];
     CableNodes& nd = st.cableNodes;
-    int node = c.firstNode;
-    for (int n = c.firstNode; n < c.firstNode + c.nodeCount; ++n)
-      if (norm(nd.position[n] - d.point) < norm(nd.position[node] - d.point)) node = n;
+    const int node = nearestCableNode(m, cable, d.point);
     const double element = st.cableElements.restLength[c.firstElement];
     if (norm(nd.position[node] - d.point) > 0.5 * element)
       d.origin.fail("point", "lies " + shown(norm(nd.position[node] - d.point)) + " m from the nearest node of cable '" +
@@ -221,6 +220,15 @@ void addStructures(Model& m, const SceneDefinition& s) {
     nd.appliedForce[node] += d.force;
     nd.fixed[node] |= d.fix ? 1 : 0;
   }
+}
+
+int nearestCableNode(const Model& m, int cable, Vec2 point) {
+  const Cable& c = m.structures.cables[cable];
+  const std::vector<Vec2>& at = m.structures.cableNodes.position;
+  int node = c.firstNode;
+  for (int n = c.firstNode; n < c.firstNode + c.nodeCount; ++n)
+    if (norm(at[n] - point) < norm(at[node] - point)) node = n;
+  return node;
 }
 
 int cableNamed(const Model& m, const Origin& origin, const std::string& name) {

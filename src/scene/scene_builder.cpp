@@ -429,11 +429,10 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
       if (distance(e) < distance(h.beamElement)) h.beamElement = e;
   } else if (info->subject == HistorySubject::Cable) {
     const Structures& st = m.structures;
-    const Cable& c = st.cables[cableNamed(m, d.origin, d.cable)];
+    const int cable = cableNamed(m, d.origin, d.cable);
+    const Cable& c = st.cables[cable];
     h.point = *d.point;
-    h.cableNode = c.firstNode;
-    for (int n = c.firstNode; n < c.firstNode + c.nodeCount; ++n)
-      if (norm(st.cableNodes.position[n] - h.point) < norm(st.cableNodes.position[h.cableNode] - h.point)) h.cableNode = n;
+    h.cableNode = nearestCableNode(m, cable, h.point);
     h.cableElement = c.firstElement;
     auto mid = [&](int e) {
       return 0.5 * (st.cableNodes.position[st.cableElements.node[e][0]] + st.cableNodes.position[st.cableElements.node[e][1]]);
