@@ -85,6 +85,15 @@ void visitState(A& a, Cable& c) {
   a(c.installed);
 }
 template <class A>
+void visitState(A& a, BoltMaterial& b) {
+  a(b.name), a(b.axialStiffness), a(b.shearStiffness), a(b.axialStrength), a(b.shearStrength), a(b.activeLength);
+  a(b.crushing);
+}
+template <class A>
+void visitState(A& a, Bolt& b) {
+  a(b.name), a(b.material), a(b.from), a(b.to), a(b.direction), a(b.firstCrossing), a(b.crossingCount), a(b.installed);
+}
+template <class A>
 void visitState(A& a, Structures& s) {
   BeamNodes& n = s.nodes;
   BeamElements& e = s.elements;
@@ -97,6 +106,9 @@ void visitState(A& a, Structures& s) {
   a(s.cableMaterials), a(s.cables), a(cn.cable), a(cn.position), a(cn.displacement), a(cn.velocity), a(cn.force);
   a(cn.forceScale), a(cn.appliedForce), a(cn.mass), a(cn.length), a(cn.fixed), a(cn.slip), a(cn.bondForce);
   a(cn.slipping), a(cn.hold), a(ce.node), a(ce.cable), a(ce.restLength), a(ce.axialForce);
+  BoltCrossings& x = s.crossings;
+  a(s.boltMaterials), a(s.bolts), a(x.bolt), a(x.point), a(x.jointDirection), a(x.side), a(x.displacement);
+  a(x.axialDisplacement), a(x.axialForce), a(x.shearForce), a(x.broken);
 }
 template <class A>
 void visitState(A& a, Model& m) {

@@ -24,9 +24,11 @@ HistoryDefinition readHistory(TableReader& r) {
   if (subject == HistorySubject::Joint) h.blocks = twoBlocks(r, "a joint history names exactly two blocks");
   else if (subject == HistorySubject::Beam) h.beam = r.string("beam");
   else if (subject == HistorySubject::Cable) h.cable = r.string("cable");
+  else if (subject == HistorySubject::Bolt) h.bolt = r.string("bolt");
   else if (subject != HistorySubject::Model && subject != HistorySubject::Fluid) h.block = r.string("block");
   const bool located = h.quantity.rfind("domain.", 0) == 0 || h.quantity.rfind("knot.", 0) == 0;
-  if (subject == HistorySubject::Gridpoint || subject == HistorySubject::Zone || subject == HistorySubject::Beam || subject == HistorySubject::Cable || located)
+  if (subject == HistorySubject::Gridpoint || subject == HistorySubject::Zone || subject == HistorySubject::Beam || subject == HistorySubject::Cable ||
+      subject == HistorySubject::Bolt || located)
     h.point = r.vec2("point");
   if (r.has("every")) h.every = static_cast<int>(r.integer("every", 1, std::numeric_limits<int>::max()));
   return h;

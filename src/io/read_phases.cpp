@@ -111,6 +111,14 @@ PhaseDefinition readPhase(TableReader& r, std::vector<std::string>& warnings) {
     TableReader t(*table, prefix, r.file());
     d.beamNodes.push_back(readBeamNode(t));
   }
+  for (auto [table, prefix] : r.tables("cable")) {
+    TableReader t(*table, prefix, r.file());
+    d.cables.push_back(readCable(t));
+  }
+  for (auto [table, prefix] : r.tables("bolt")) {
+    TableReader t(*table, prefix, r.file());
+    d.bolts.push_back(readBolt(t));
+  }
   if (r.has("flow")) d.flow = r.boolean("flow", true);
   for (auto [table, prefix] : r.tables("flow_boundary")) {
     TableReader t(*table, prefix, r.file());

@@ -1,4 +1,5 @@
-// [[beam_material]], [[beam]], [[beam_node]], [[cable_material]], [[cable]], [[cable_node]]: rock support (docs/models/support.md).
+// [[beam_material]], [[beam]], [[beam_node]], [[cable_material]], [[cable]], [[cable_node]],
+// [[bolt_material]], [[bolt]]: rock support (docs/models/support.md).
 #include <cmath>
 #include <numbers>
 
@@ -48,6 +49,39 @@ CableMaterialDefinition readCableMaterial(TableReader& r) {
   return d;
 }
 
+BoltMaterialDefinition readBoltMaterial(TableReader& r) {
+  BoltMaterialDefinition d;
+  d.origin = r.origin();
+  BoltMaterial& m = d.material;
+  m.name = r.string("name");
+  m.axialStiffness = r.positive("axial_stiffness");
+  m.shearStiffness = r.nonNegative("shear_stiffness", 0.0);
+  if (!r.has("shear_stiffness")) r.fail("shear_stiffness", "is required (0 for a bolt that only acts along its axis)");
+  if (r.has("axial_strength")) m.axialStrength = r.positive("axial_strength");
+  if (r.has("shear_strength")) m.shearStrength = r.positive("shear_strength");
+  m.activeLength = r.positive("active_length");
+  m.crushing = r.boolean("crushing", true);
+  d.spacing = r.has("spacing") ? r.positive("spacing") : 1.0;
+  r.finish();
+  return d;
+}
+
+}  // namespace
+
+BoltDefinition readBolt(TableReader& r) {
+  BoltDefinition d;
+  d.origin = r.origin();
+  d.name = r.string("name");
+  d.material = r.string("material");
+  const Polygon points = r.polygon("points");
+  if (points.size() != 2) r.fail("points", "a bolt is straight: give its two ends, [[x0, y0], [x1, y1]]");
+  if (points[0].x == points[1].x && points[0].y == points[1].y) r.fail("points", "the two ends are the same point");
+  d.from = points[0];
+  d.to = points[1];
+  r.finish();
+  return d;
+}
+
 CableDefinition readCable(TableReader& r) {
   CableDefinition d;
   d.origin = r.origin();
@@ -62,6 +96,8 @@ CableDefinition readCable(TableReader& r) {
   r.finish();
   return d;
 }
+
+namespace {
 
 CableNodeDefinition readCableNode(TableReader& r) {
   CableNodeDefinition d;
@@ -156,6 +192,14 @@ void readStructures(TableReader& top, SceneDefinition& scene) {
   for (auto [table, prefix] : top.tables("cable_node")) {
     TableReader r(*table, prefix, top.file());
     scene.cableNodes.push_back(readCableNode(r));
+  }
+  for (auto [table, prefix] : top.tables("bolt_material")) {
+    TableReader r(*table, prefix, top.file());
+    scene.boltMaterials.push_back(readBoltMaterial(r));
+  }
+  for (auto [table, prefix] : top.tables("bolt")) {
+    TableReader r(*table, prefix, top.file());
+    scene.bolts.push_back(readBolt(r));
   }
 }
 

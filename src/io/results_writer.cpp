@@ -174,6 +174,34 @@ void writeCables(nlohmann::json& j, const Model& m) {
                                {"length", st.cableElements.restLength}, {"axial_force", st.cableElements.axialForce}}}};
 }
 
+// Bolts: their reinforcements at the joints they cross (where, which blocks, the forces and
+// displacements, broken when a side was excavated).
+void writeBolts(nlohmann::json& j, const Model& m) {
+  const Structures& st = m.structures;
+  const BoltCrossings& x = st.crossings;
+  std::vector<double> px, py, shearDisplacement;
+  std::vector<int> block0, block1;
+  for (int i = 0; i < x.size(); ++i) {
+    px.push_back(x.point[i].x);
+    py.push_back(x.point[i].y);
+    shearDisplacement.push_back(dot(x.displacement[i], perp(st.bolts[x.bolt[i]].direction)));
+    block0.push_back(x.side[i][0].block);
+    block1.push_back(x.side[i][1].block);
+  }
+  std::vector<std::string> names;
+  std::vector<int> installed;
+  for (const Bolt& b : st.bolts) {
+    names.push_back(b.name);
+    installed.push_back(b.installed);
+  }
+  j["bolts"] = {{"names", names},
+                {"installed", installed},
+                {"reinforcements", {{"bolt", x.bolt}, {"x", px}, {"y", py}, {"block_0", block0}, {"block_1", block1},
+                                    {"axial_force", x.axialForce}, {"shear_force", x.shearForce},
+                                    {"axial_displacement", x.axialDisplacement}, {"shear_displacement", shearDisplacement},
+                                    {"broken", x.broken}}}};
+}
+
 // Fluid in the joints: the domains (at their present centres), the knots (at their present
 // points) and the fluid balance.
 void writeFlow(nlohmann::json& j, const Model& m) {
@@ -374,6 +402,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
   if (m.flow.present) writeFlow(j, m);
   if (!m.structures.beams.empty()) writeStructures(j, m);
   if (!m.structures.cables.empty()) writeCables(j, m);
+  if (!m.structures.bolts.empty()) writeBolts(j, m);
 
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

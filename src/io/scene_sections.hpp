@@ -55,6 +55,8 @@ void readFluid(TableReader& top, SceneDefinition& scene);
 void readStructures(TableReader& top, SceneDefinition& scene);
 BeamDefinition readBeam(TableReader& r);
 BeamNodeDefinition readBeamNode(TableReader& r);
+CableDefinition readCable(TableReader& r);
+BoltDefinition readBolt(TableReader& r);
 FlowBoundaryDefinition readFlowBoundary(TableReader& r);
 void readJointFlowKeys(TableReader& r, JointMaterial& joint);
 

@@ -7,6 +7,7 @@
 #include "contact/contact_geometry.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
+#include "structure/rock_point.hpp"
 
 namespace vdec {
 
@@ -22,7 +23,7 @@ struct Grid {
   // Point data: displacement and velocity (rigid block vertices take their block's).
   std::vector<Vec2> displacement, velocity;
   // Cell data.
-  std::vector<int> kind;  // 0 zone, 1 rigid block, 2 contact, 3 fluid domain, 4 flow knot, 5 beam element, 6 cable element
+  std::vector<int> kind;  // 0 zone, 1 rigid block, 2 contact, 3 fluid domain, 4 flow knot, 5 beam element, 6 cable element, 7 bolt reinforcement
   std::vector<int> block;
   std::vector<double> sxx, syy, sxy, szz, normalForce, shearForce;
   bool fluid = false;  // the fluid's arrays below, with [fluid] only
@@ -136,6 +137,25 @@ Grid collect(const Model& m) {
     cellDefaults(g, 6, -1);
     g.axialForce.back() = st.cableElements.axialForce[e];
   }
+  // Bolts' reinforcements: their active length as it stands, centred where side 0 holds the joint.
+  const BoltCrossings& x = st.crossings;
+  for (int i = 0; i < x.size(); ++i) {
+    const Bolt& bolt = st.bolts[x.bolt[i]];
+    if (!bolt.installed) continue;
+    const double active = st.boltMaterials[bolt.material].activeLength;
+    const Vec2 span = active * bolt.direction + x.displacement[i];
+    const RockPointNow at = rockPointNow(m, x.side[i][0]);
+    g.cells.push_back({static_cast<int>(g.points.size()), static_cast<int>(g.points.size()) + 1});
+    for (const Vec2 end : {at.position - 0.5 * active * normalized(span), at.position - 0.5 * active * normalized(span) + span}) {
+      g.points.push_back(end);
+      g.displacement.push_back({});
+      g.velocity.push_back(at.velocity);
+    }
+    g.types.push_back(kLine);
+    cellDefaults(g, 7, x.side[i][0].block);
+    g.axialForce.back() = x.axialForce[i];
+    g.beamShear.back() = x.shearForce[i];
+  }
   return g;
 }
 
@@ -219,7 +239,7 @@ void VtkSeries::write(const Model& m) {
   vectorArray(out, "velocity", g.velocity);
   out << "</PointData>\n<CellData>\n";
   const std::string kinds = std::string("kind (0 zone, 1 rigid block, 2 contact") +
-                            (g.fluid ? ", 3 fluid domain, 4 flow knot" : "") + (g.beams ? ", 5 beam element, 6 cable element" : "") + ")";
+                            (g.fluid ? ", 3 fluid domain, 4 flow knot" : "") + (g.beams ? ", 5 beam element, 6 cable element, 7 bolt reinforcement" : "") + ")";
   dataArray(out, kinds.c_str(), g.kind, "Int32");
   dataArray(out, "block", g.block, "Int32");
   dataArray(out, "sxx", g.sxx, "Float64");

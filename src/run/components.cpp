@@ -11,6 +11,7 @@
 #include "motion/rigid_motion.hpp"
 #include "run/component.hpp"
 #include "structure/beams.hpp"
+#include "structure/bolts.hpp"
 #include "structure/cables.hpp"
 #include "zone/cst.hpp"
 
@@ -134,12 +135,13 @@ Component fractureFlow(RunContext& run) {
   return c;
 }
 
-// Beams (1.4.4): the elements' and ties' forces with the step's forces, the nodes' motion with
+// Beams, cables and bolts (1.4.4): the elements', ties' and reinforcements' forces with the step's forces, the nodes' motion with
 // the blocks'. The ties' springs and slip enter the energy account as work on nodes and rock.
 Component structures(RunContext& run) {
   Component c{"structures", {}, [&run] {
-                return std::min(beamTimeStep(run.model, run.settings.frac, run.settings.zoneFraction),
-                                cableTimeStep(run.model, run.settings.frac, run.settings.zoneFraction));
+                const double frac = run.settings.frac, zoneFraction = run.settings.zoneFraction;
+                return std::min({beamTimeStep(run.model, frac, zoneFraction), cableTimeStep(run.model, frac, zoneFraction),
+                                 boltTimeStep(run.model, frac, zoneFraction)});
               }};
   const Structures& st = run.model.structures;
   if (!st.beams.empty()) {
@@ -152,6 +154,15 @@ Component structures(RunContext& run) {
                           const CableStepTotals t = computeCableForces(run.model, run.model.cycle == 0 ? 0.0 : run.dt);
                           run.step.strainEnergy += t.strainEnergy;
                           run.energy.addDissipation(0.0, 0.0, t.plasticWork);
+                        }});
+  }
+  if (!st.bolts.empty()) {
+    // The reinforcements' work on the rock is the blocks' external work (as the ties' and the
+    // grout's): what they store and dissipate (yield, crushing) stays outside the account.
+    c.stages.push_back({"bolt-forces", [&run] {
+                          const BoltStepTotals t = computeBoltForces(run.model, run.model.cycle == 0 ? 0.0 : run.dt);
+                          run.step.forceScaleSum += t.sumForceMagnitude;
+                          run.step.forceCount += t.acting;
                         }});
   }
   if (!st.beams.empty()) {

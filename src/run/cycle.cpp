@@ -2,6 +2,8 @@
 
 #include "flow/fracture_flow.hpp"
 #include "structure/beams.hpp"
+#include "structure/bolts.hpp"
+#include "structure/cables.hpp"
 
 #include <unistd.h>
 
@@ -476,7 +478,13 @@ void Cycle::beginPhase(const PhaseChanges& changes, const std::string& phaseName
     nd.appliedMoment[change.node] += change.moment;
     nd.fixed[change.node] |= change.fix;
   }
-  if (!changes.installBeams.empty()) {
+  // Cables and bolts likewise: those freed let go (a cable's energy leaves without work), then
+  // those installed, stress-free where the rock is now.
+  for (const int cable : changes.freeCables) energy_.withdraw(removeCable(model_, cable));
+  for (const int bolt : changes.freeBolts) removeBolt(model_, bolt);
+  for (const int cable : changes.installCables) installCable(model_, cable);
+  for (const int bolt : changes.installBolts) installBolt(model_, bolt, "phase '" + phaseName + "'");
+  if (!changes.installBeams.empty() || !changes.installCables.empty() || !changes.installBolts.empty()) {
     undampedStep_ = std::min(undampedStep_, stepLimitOf("structures"));
     dt_ = std::min(dt_, dampedStep(undampedStep_));
   }
@@ -548,8 +556,11 @@ void Cycle::beginPhase(const PhaseChanges& changes, const std::string& phaseName
       }
       for (BeamTie& t : model_.structures.ties)
         if (t.zone < 0 && t.block == b) t.local = rotated(t.local, c, s);
-      for (CableNodes::Hold& hold : model_.structures.cableNodes.hold)
+      for (RockHold& hold : model_.structures.cableNodes.hold)
         if (hold.zone < 0 && hold.block == b) hold.local = rotated(hold.local, c, s);
+      for (std::array<RockHold, 2>& sides : model_.structures.crossings.side)
+        for (RockHold& hold : sides)
+          if (hold.zone < 0 && hold.block == b) hold.local = rotated(hold.local, c, s);
       bl.rotation[b] = 0.0;
     }
     for (int i = 0; i < g.size(); ++i) g.initialPosition[i] = g.position[i];
@@ -665,6 +676,14 @@ void Cycle::excavate(const ExcavationRegion& region) {
   }
   for (std::size_t i = 0; i < model_.structures.cableNodes.hold.size(); ++i)
     if (model_.structures.cableNodes.hold[i].block < 0) model_.structures.cableNodes.bondForce[i] = 0.0;
+  // A bolt's reinforcement with the zone on either side dug out holds nothing from then on.
+  BoltCrossings& crossings = model_.structures.crossings;
+  for (int i = 0; i < crossings.size(); ++i)
+    for (RockHold& hold : crossings.side[i]) {
+      if (hold.zone < 0) continue;
+      hold.zone = done.newIndex[hold.zone];
+      if (hold.zone < 0) breakCrossing(crossings, i);
+    }
   // A tie whose zone is dug out holds nothing any more; the others follow their zone's new number.
   for (BeamTie& t : model_.structures.ties) {
     if (t.zone < 0 || t.broken) continue;
@@ -709,6 +728,10 @@ void Cycle::excavateRigidBlocks(const ExcavationRegion& region) {
       cables.hold[i].block = -1;
       cables.bondForce[i] = 0.0;
     }
+  BoltCrossings& crossings = model_.structures.crossings;
+  for (int i = 0; i < crossings.size(); ++i)
+    for (const RockHold& hold : crossings.side[i])
+      if (hold.zone < 0 && std::find(gone.begin(), gone.end(), hold.block) != gone.end()) breakCrossing(crossings, i);
   // Its motion and the elastic energy of its joints leave the model without work; its contacts
   // go with a rescan, which no longer pairs it with anything.
   double removed = 0.0;

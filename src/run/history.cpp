@@ -21,6 +21,8 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::BlockAngularVelocity, "block.angular_velocity", S::Block, "rad/s", "angular velocity"},
       {Q::BlockAccelerationX, "block.acceleration_x", S::Block, "m/s^2", "centroid acceleration x: the change of velocity over the step, at the step's start"},
       {Q::BlockAccelerationY, "block.acceleration_y", S::Block, "m/s^2", "centroid acceleration y: the change of velocity over the step, at the step's start"},
+      {Q::BlockReactionX, "block.reaction_x", S::Block, "N/m", "x force the block's drive adds to hold its velocity: minus the sum of the forces of the step on it (contacts, supports, fluid, gravity, applied loads); of a free block, minus its unbalanced force"},
+      {Q::BlockReactionY, "block.reaction_y", S::Block, "N/m", "y force the block's drive adds, as block.reaction_x"},
       {Q::JointNormalForce, "joint.normal_force", S::Joint, "N/m", "sum of contact normal forces, compression positive"},
       {Q::JointShearForce, "joint.shear_force", S::Joint, "N/m", "sum of contact shear forces"},
       {Q::JointNormalStress, "joint.normal_stress", S::Joint, "Pa", "sum of normal forces / joint.length"},
@@ -67,6 +69,10 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::CableDisplacement, "cable.displacement", S::Cable, "m", "displacement along the cable (first point towards last) of its node nearest the point"},
       {Q::CableSlip, "cable.slip", S::Cable, "m", "slip of the cable's node nearest the point relative to the rock, along the cable"},
       {Q::CableBondForce, "cable.bond_force", S::Cable, "N/m", "the grout's force on the cable's node nearest the point, along the cable"},
+      {Q::BoltAxialForce, "bolt.axial_force", S::Bolt, "N/m", "axial force of the bolt's reinforcement nearest the point, tension positive (0 before the bolt is installed)"},
+      {Q::BoltShearForce, "bolt.shear_force", S::Bolt, "N/m", "shear force of the bolt's reinforcement nearest the point, along the bolt's direction turned +90 degrees"},
+      {Q::BoltAxialDisplacement, "bolt.axial_displacement", S::Bolt, "m", "u_axial of the reinforcement nearest the point: the joint's displacement increments along its active length, summed"},
+      {Q::BoltShearDisplacement, "bolt.shear_displacement", S::Bolt, "m", "the joint's displacement at the reinforcement nearest the point along the bolt's direction turned +90 degrees"},
       {Q::BeamMoment, "beam.moment", S::Beam, "N m/m", "bending moment E I kappa of the beam's element nearest the point, linear between its ends, at the point's projection on it"},
   };
   return table;
@@ -210,6 +216,30 @@ double cableMeasure(const Model& m, const HistorySpec& h) {
   }
 }
 
+double boltMeasure(const Model& m, const HistorySpec& h) {
+  const Structures& st = m.structures;
+  const Bolt& bolt = st.bolts[h.bolt];
+  const BoltCrossings& x = st.crossings;
+  if (bolt.crossingCount == 0) return 0.0;
+  int i = bolt.firstCrossing;
+  for (int k = i; k < bolt.firstCrossing + bolt.crossingCount; ++k)
+    if (norm(x.point[k] - h.point) < norm(x.point[i] - h.point)) i = k;
+  switch (h.quantity) {
+    case HistoryQuantity::BoltAxialForce: return x.axialForce[i];
+    case HistoryQuantity::BoltShearForce: return x.shearForce[i];
+    case HistoryQuantity::BoltAxialDisplacement: return x.axialDisplacement[i];
+    default: return dot(x.displacement[i], perp(bolt.direction));
+  }
+}
+
+Vec2 blockReaction(const Model& m, int b) {
+  const Blocks& bl = m.blocks;
+  Vec2 total = bl.force[b] + bl.mass[b] * m.gravity + bl.appliedForce[b];
+  if (!bl.boundaryForce.empty()) total += bl.boundaryForce[b];
+  if (!bl.dashpotForce.empty()) total += bl.dashpotForce[b];
+  return -1.0 * total;
+}
+
 }  // namespace
 
 bool appendHistorySample(HistorySeries& series, double t, double value, std::size_t limit) {
@@ -244,6 +274,8 @@ double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) 
     case HistoryQuantity::BlockVelocityY: return b.velocity[h.block].y;
     case HistoryQuantity::BlockRotation: return b.rotation[h.block];
     case HistoryQuantity::BlockAngularVelocity: return b.angularVelocity[h.block];
+    case HistoryQuantity::BlockReactionX: return blockReaction(m, h.block).x;
+    case HistoryQuantity::BlockReactionY: return blockReaction(m, h.block).y;
     case HistoryQuantity::UnbalancedRatio: return mon.unbalancedRatio;
     case HistoryQuantity::LargestUnbalancedForce: return mon.largestUnbalancedForce;
     case HistoryQuantity::KineticEnergy: return mon.kineticEnergy;
@@ -267,6 +299,7 @@ double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) 
         case HistorySubject::Fluid: return fluidMeasure(m, h);
         case HistorySubject::Beam: return beamMeasure(m, h);
         case HistorySubject::Cable: return cableMeasure(m, h);
+        case HistorySubject::Bolt: return boltMeasure(m, h);
         default: return jointMeasure(m, h);
       }
   }

@@ -25,6 +25,8 @@ enum class HistoryQuantity {
   DomainPressure, KnotFlow, KnotAperture, FluidInflow, FluidOutflow, FluidContent, FluidImbalance,
   BeamDisplacementX, BeamDisplacementY, BeamRotation, BeamAxialForce, BeamShearForce, BeamMoment,
   CableAxialForce, CableDisplacement, CableSlip, CableBondForce,
+  BoltAxialForce, BoltShearForce, BoltAxialDisplacement, BoltShearDisplacement,
+  BlockReactionX, BlockReactionY,
 };
 
 
@@ -32,7 +34,9 @@ enum class HistoryQuantity {
 // (domain.*, knot.*): the network changes with the contacts, so a point, not an id, names them.
 // Beam: the node (displacements, rotation) or the element (forces) of a named beam nearest a point.
 // Cable: the node (displacement, slip, bond force) or element (axial force) of a named cable nearest a point.
-enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone, Fluid, Beam, Cable };
+// Bolt: the reinforcement of a named bolt nearest a point (found at each sample: a bolt installed
+// by a phase has its reinforcements from then on).
+enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone, Fluid, Beam, Cable, Bolt };
 
 struct HistoryQuantityInfo {
   HistoryQuantity quantity;
@@ -61,6 +65,7 @@ struct HistorySpec {
   int beamElement = -1; // and the element nearest it
   int cableNode = -1;   // Cable subject: the node nearest the point
   int cableElement = -1;
+  int bolt = -1;        // Bolt subject
 };
 
 // Acceleration quantities are formed by the cycle from the velocity they are the rate of:

@@ -62,6 +62,8 @@ struct PhaseChanges {
     std::uint8_t fix = 0;
   };
   std::vector<BeamNodeChange> beamNodes;      // loads added and degrees of freedom held
+  std::vector<int> freeCables, freeBolts;     // taken out at the phase's start (indices)
+  std::vector<int> installCables, installBolts;  // then installed, stress-free where the rock is then
 };
 
 struct Phase {

@@ -48,6 +48,9 @@ int nearestBeamNode(const Model& model, int beam, Vec2 point);
 // A [[beam_node]] resolved to the node of its beam nearest its point.
 PhaseChanges::BeamNodeChange beamNodeChange(const Model& model, const BeamNodeDefinition& definition);
 void applyBeamNodeChange(Model& model, const PhaseChanges::BeamNodeChange& change);
+// A cable's nodes and elements, or a bolt, into the model, not installed; its index.
+int addCable(Model& model, const CableDefinition& definition);
+int addBolt(Model& model, const BoltDefinition& definition);
 
 // History subjects by position (initial configuration): the block's gridpoint nearest `point`,
 // and the zone of the block that holds `point` (-1 when none does).

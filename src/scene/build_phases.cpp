@@ -64,10 +64,15 @@ Phase buildPhase(const PhaseDefinition& d, Model& m, std::optional<Model>& geome
   const Structures& st = m.structures;
   for (const std::string& name : d.free) {
     if (!active.erase(name))
-      d.origin.fail("free", "no boundary or beam named '" + name + "' is active when the phase starts (give [[boundary]], "
-                            "[[beam]] or an earlier phase's [[phase.boundary]] or [[phase.beam]] that name)");
+      d.origin.fail("free", "no boundary, beam, cable or bolt named '" + name + "' is active when the phase starts (give "
+                            "[[boundary]], [[beam]], [[cable]], [[bolt]] or an earlier phase's table of that kind "
+                            "with that name)");
     const auto beam = std::find_if(st.beams.begin(), st.beams.end(), [&](const Beam& b) { return b.name == name; });
+    const auto cable = std::find_if(st.cables.begin(), st.cables.end(), [&](const Cable& b) { return b.name == name; });
+    const auto bolt = std::find_if(st.bolts.begin(), st.bolts.end(), [&](const Bolt& b) { return b.name == name; });
     if (beam != st.beams.end()) c.freeBeams.push_back(static_cast<int>(beam - st.beams.begin()));
+    else if (cable != st.cables.end()) c.freeCables.push_back(static_cast<int>(cable - st.cables.begin()));
+    else if (bolt != st.bolts.end()) c.freeBolts.push_back(static_cast<int>(bolt - st.bolts.begin()));
     else c.freeBoundaries.push_back(name);
   }
   for (const BlockStrengthDefinition& b : d.blockStrengths) c.blockStrengths.push_back(blockStrength(m, b));
@@ -119,6 +124,18 @@ Phase buildPhase(const PhaseDefinition& d, Model& m, std::optional<Model>& geome
     c.installBeams.push_back(index);
   }
   for (const BeamNodeDefinition& b : d.beamNodes) c.beamNodes.push_back(beamNodeChange(m, b));
+  for (const CableDefinition& b : d.cables) {
+    if (active.count(b.name))
+      b.origin.fail("name", "'" + b.name + "' names a support or boundary active when the phase starts: give the cable another");
+    c.installCables.push_back(addCable(m, b));
+    active.insert(b.name);
+  }
+  for (const BoltDefinition& b : d.bolts) {
+    if (active.count(b.name))
+      b.origin.fail("name", "'" + b.name + "' names a support or boundary active when the phase starts: give the bolt another");
+    c.installBolts.push_back(addBolt(m, b));
+    active.insert(b.name);
+  }
   return phase;
 }
 

@@ -6,6 +6,7 @@
 #include "core/shown.hpp"
 #include "scene/build_parts.hpp"
 #include "structure/beams.hpp"
+#include "structure/bolts.hpp"
 #include "structure/cables.hpp"
 
 namespace vdec {
@@ -125,9 +126,7 @@ void applyBeamNodeChange(Model& m, const PhaseChanges::BeamNodeChange& c) {
   nd.fixed[c.node] |= c.fix;
 }
 
-namespace {
-
-void addCable(Model& m, const CableDefinition& d) {
+int addCable(Model& m, const CableDefinition& d) {
   Structures& st = m.structures;
   for (const Cable& other : st.cables)
     if (other.name == d.name) d.origin.fail("name", "cable '" + d.name + "' is defined twice");
@@ -172,10 +171,25 @@ void addCable(Model& m, const CableDefinition& d) {
   }
   cable.elementCount = d.elements;
   st.cables.push_back(cable);
-  installCable(m, index);
+  return index;
 }
 
-}  // namespace
+int addBolt(Model& m, const BoltDefinition& d) {
+  Structures& st = m.structures;
+  for (const Bolt& other : st.bolts)
+    if (other.name == d.name) d.origin.fail("name", "bolt '" + d.name + "' is defined twice");
+  Bolt bolt;
+  bolt.name = d.name;
+  for (int i = 0; i < static_cast<int>(st.boltMaterials.size()); ++i)
+    if (st.boltMaterials[i].name == d.material) bolt.material = i;
+  if (bolt.material < 0) d.origin.fail("material", "no [[bolt_material]] is named '" + d.material + "'");
+  bolt.from = d.from;
+  bolt.to = d.to;
+  bolt.direction = normalized(d.to - d.from);
+  bolt.firstCrossing = st.crossings.size();
+  st.bolts.push_back(bolt);
+  return static_cast<int>(st.bolts.size()) - 1;
+}
 
 void addStructures(Model& m, const SceneDefinition& s) {
   Structures& st = m.structures;
@@ -207,7 +221,7 @@ void addStructures(Model& m, const SceneDefinition& s) {
     mat.yieldCompression /= d.spacing;
     st.cableMaterials.push_back(mat);
   }
-  for (const CableDefinition& d : s.cables) addCable(m, d);
+  for (const CableDefinition& d : s.cables) installCable(m, addCable(m, d));
   for (const CableNodeDefinition& d : s.cableNodes) {
     const int cable = cableNamed(m, d.origin, d.cable);
     const Cable& c = st.cables[cable];
@@ -219,6 +233,21 @@ void addStructures(Model& m, const SceneDefinition& s) {
                                  d.cable + "', more than half an element: give a point on the cable");
     nd.appliedForce[node] += d.force;
     nd.fixed[node] |= d.fix ? 1 : 0;
+  }
+  for (const BoltMaterialDefinition& d : s.boltMaterials) {
+    for (const BoltMaterial& other : st.boltMaterials)
+      if (other.name == d.material.name) d.origin.fail("name", "bolt material '" + d.material.name + "' is defined twice");
+    BoltMaterial mat = d.material;
+    for (double* perMetre : {&mat.axialStiffness, &mat.shearStiffness, &mat.axialStrength, &mat.shearStrength}) *perMetre /= d.spacing;
+    st.boltMaterials.push_back(mat);
+  }
+  for (const BoltDefinition& d : s.bolts) {
+    const int index = addBolt(m, d);
+    try {
+      installBolt(m, index, "");
+    } catch (const SceneError& e) {
+      d.origin.fail("points", e.what());
+    }
   }
 }
 

@@ -439,6 +439,12 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
     };
     for (int e = c.firstElement; e < c.firstElement + c.elementCount; ++e)
       if (norm(mid(e) - h.point) < norm(mid(h.cableElement) - h.point)) h.cableElement = e;
+  } else if (info->subject == HistorySubject::Bolt) {
+    const std::vector<Bolt>& bolts = m.structures.bolts;
+    for (int i = 0; i < static_cast<int>(bolts.size()); ++i)
+      if (bolts[i].name == d.bolt) h.bolt = i;
+    if (h.bolt < 0) d.origin.fail("bolt", "no [[bolt]] or [[phase.bolt]] is named '" + d.bolt + "'");
+    h.point = *d.point;
   } else if (info->subject == HistorySubject::Joint) {
     h.block = blockNamed(m, d.origin, "blocks", d.blocks[0]);
     h.otherBlock = blockNamed(m, d.origin, "blocks", d.blocks[1]);
@@ -540,7 +546,15 @@ Scene buildScene(SceneDefinition s) {
   for (const BeamDefinition& d : s.beams)
     if (!active.insert(d.name).second)
       d.origin.fail("name", "beam '" + d.name + "' has the name of a boundary: give it another (a phase's free takes "
-                            "boundaries and beams by name)");
+                            "boundaries and supports by name)");
+  for (const CableDefinition& d : s.cables)
+    if (!active.insert(d.name).second)
+      d.origin.fail("name", "cable '" + d.name + "' has the name of a boundary or beam: give it another (a phase's free "
+                            "takes boundaries and supports by name)");
+  for (const BoltDefinition& d : s.bolts)
+    if (!active.insert(d.name).second)
+      d.origin.fail("name", "bolt '" + d.name + "' has the name of a boundary, beam or cable: give it another (a phase's "
+                            "free takes boundaries and supports by name)");
   std::optional<Model> excavated;  // a copy of the model, excavated as the phases will, once one does
   std::vector<char> plastic;  // block materials Mohr-Coulomb by the phase at hand
   for (const BlockMaterial& mat : m.blockMaterials) plastic.push_back(mat.plastic);

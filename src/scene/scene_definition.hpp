@@ -191,6 +191,22 @@ struct CableNodeDefinition {
   Origin origin;
 };
 
+// A [[bolt_material]]: as given (per bolt); the builder divides stiffnesses and strengths by the
+// spacing.
+struct BoltMaterialDefinition {
+  BoltMaterial material;
+  double spacing = 1.0;
+  Origin origin;
+};
+
+// A [[bolt]]: a straight segment; a reinforcement at each joint it crosses.
+struct BoltDefinition {
+  std::string name;
+  std::string material;
+  Vec2 from, to;
+  Origin origin;
+};
+
 // A [[beam_node]]: the node of a beam nearest a point, loaded or held.
 struct BeamNodeDefinition {
   std::string beam;
@@ -213,6 +229,7 @@ struct HistoryDefinition {
   std::string block;                 // block, gridpoint and zone quantities
   std::string beam;                  // beam quantities
   std::string cable;                 // cable quantities
+  std::string bolt;                  // bolt quantities
   std::array<std::string, 2> blocks; // joint quantities
   std::optional<Vec2> point;         // gridpoint and zone quantities
   int every = 1;
@@ -257,6 +274,8 @@ struct PhaseDefinition {
   std::vector<FlowBoundaryDefinition> flowBoundaries;
   std::vector<BeamDefinition> beams;          // installed at the phase's start
   std::vector<BeamNodeDefinition> beamNodes;  // loads and holds on beams, from the phase's start
+  std::vector<CableDefinition> cables;        // installed at the phase's start
+  std::vector<BoltDefinition> bolts;          // installed at the phase's start
   Origin origin;
 };
 
@@ -282,6 +301,8 @@ struct SceneDefinition {
   std::vector<CableMaterialDefinition> cableMaterials;
   std::vector<CableDefinition> cables;
   std::vector<CableNodeDefinition> cableNodes;
+  std::vector<BoltMaterialDefinition> boltMaterials;
+  std::vector<BoltDefinition> bolts;
   std::vector<JointAssignmentDefinition> jointAssignments;
   std::vector<HistoryDefinition> histories;
   std::vector<PhaseDefinition> phases;

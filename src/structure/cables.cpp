@@ -125,4 +125,23 @@ void installCable(Model& m, int index) {
   cable.installed = true;
 }
 
+double removeCable(Model& m, int index) {
+  Structures& st = m.structures;
+  Cable& cable = st.cables[index];
+  const CableMaterial& mat = st.cableMaterials[cable.material];
+  CableNodes& nd = st.cableNodes;
+  CableElements& el = st.cableElements;
+  double energy = 0.0;
+  for (int e = cable.firstElement; e < cable.firstElement + cable.elementCount; ++e) {
+    energy += 0.5 * el.axialForce[e] * el.axialForce[e] * el.restLength[e] / (mat.young * mat.area);
+    el.axialForce[e] = 0.0;
+  }
+  for (int i = cable.firstNode; i < cable.firstNode + cable.nodeCount; ++i) {
+    energy += 0.5 * nd.mass[i] * nd.velocity[i] * nd.velocity[i];
+    nd.velocity[i] = nd.force[i] = nd.bondForce[i] = 0.0;
+  }
+  cable.installed = false;
+  return energy;
+}
+
 }  // namespace vdec

@@ -22,5 +22,8 @@ double cableTimeStep(const Model& model, double frac, double zoneFraction);
 // Puts cable `index` into the model: each node's grout holds the rock at its point (none outside
 // the rock: an ungrouted length), the node placed where that point is now.
 void installCable(Model& model, int index);
+// Takes cable `index` out (a phase's free): its nodes stop, its grout lets go. Returns the kinetic
+// and strain energy it took with it (J/m).
+double removeCable(Model& model, int index);
 
 }  // namespace vdec

@@ -117,8 +117,17 @@ struct Cable {
   bool installed = false;
 };
 
-// Cable nodes, structure of arrays. The grout's hold on the rock: block, local, zone, weight as a
-// beam tie's (block -1: a node outside the rock, ungrouted).
+// A point of the rock a support holds: in a rigid block's frame (local: from the centroid,
+// unrotated), or at barycentric weights in a zone of a deformable block; block -1: none.
+struct RockHold {
+  int block = -1;
+  Vec2 local;
+  int zone = -1;
+  std::array<double, 3> weight{};
+};
+
+// Cable nodes, structure of arrays. The grout's hold on the rock (block -1: a node outside the
+// rock, ungrouted).
 struct CableNodes {
   std::vector<int> cable;
   std::vector<Vec2> position;          // as installed
@@ -133,12 +142,7 @@ struct CableNodes {
   std::vector<double> slip;            // along the cable, relative to the rock, since installation
   std::vector<double> bondForce;       // the grout's on the node, along the cable
   std::vector<std::uint8_t> slipping;  // at its strength in the last step
-  struct Hold {
-    int block = -1;
-    Vec2 local;
-    int zone = -1;
-    std::array<double, 3> weight{};
-  };
+  using Hold = RockHold;
   std::vector<Hold> hold;
   int size() const { return static_cast<int>(cable.size()); }
 };
@@ -151,6 +155,44 @@ struct CableElements {
   int size() const { return static_cast<int>(node.size()); }
 };
 
+// A [[bolt_material]], per unit thickness (stiffnesses and strengths over the out-of-plane
+// spacing): local reinforcement across joints (1.4-36 to 1.4-51).
+struct BoltMaterial {
+  std::string name;
+  double axialStiffness = 0.0;       // K_a, N/m per m
+  double shearStiffness = 0.0;       // K_s, N/m per m
+  double axialStrength = INFINITY;   // the axial force's bound, tension and compression, N per m
+  double shearStrength = INFINITY;   // F_s of 1.4-40 (the bar's tensile capacity), N per m
+  double activeLength = 0.0;         // m, across the joint
+  bool crushing = true;              // the reduction factor r_f of 1.4-47
+};
+
+// A straight bolt (a [[bolt]]): a reinforcement at every joint its segment crosses.
+struct Bolt {
+  std::string name;
+  int material = -1;
+  Vec2 from, to;                     // the segment as given
+  Vec2 direction;                    // unit, from -> to
+  int firstCrossing = 0, crossingCount = 0;  // found when installed
+  bool installed = false;
+};
+
+// A bolt's reinforcement at one joint, structure of arrays. Side 0 is the block the bolt leaves
+// (going from -> to), side 1 the block it enters; the displacement is side 1's relative to side 0
+// at the joint, since installation.
+struct BoltCrossings {
+  std::vector<int> bolt;
+  std::vector<Vec2> point;                     // on the joint, where installed
+  std::vector<Vec2> jointDirection;            // unit, along the joint there (side 0's edge)
+  std::vector<std::array<RockHold, 2>> side;
+  std::vector<Vec2> displacement;
+  std::vector<double> axialDisplacement;       // u_axial of 1.4-47: increments along the active length, summed
+  std::vector<double> axialForce;              // N per m, tension positive
+  std::vector<double> shearForce;              // N per m, along the bolt's direction turned +90 degrees
+  std::vector<std::uint8_t> broken;            // a side excavated: no force from then on
+  int size() const { return static_cast<int>(bolt.size()); }
+};
+
 struct Structures {
   std::vector<BeamMaterial> materials;
   std::vector<Beam> beams;
@@ -161,7 +203,10 @@ struct Structures {
   std::vector<Cable> cables;
   CableNodes cableNodes;
   CableElements cableElements;
-  bool any() const { return !beams.empty() || !cables.empty(); }
+  std::vector<BoltMaterial> boltMaterials;
+  std::vector<Bolt> bolts;
+  BoltCrossings crossings;
+  bool any() const { return !beams.empty() || !cables.empty() || !bolts.empty(); }
 };
 
 }  // namespace vdec

@@ -829,6 +829,125 @@ def bolt_joint_shear_increase(*, P, alpha_deg, phi_deg):
     return P * (math.cos(alpha) + math.sin(alpha) * math.tan(phi))
 
 
+def yielding_spring_force(u, *, K, F_max):
+    """Force of the reference's continuously-yielding spring (1.4-48, 1.4-49) loaded monotonically from
+    zero through a displacement u (either sign): dF = K |du| f(F), f = |F_b - F| (F_b - F) / F_max^2 with
+    F_b = F_max sign(du). With y = 1 - F / F_b, dy/du = -(K / F_max) y^2 for 0 <= y <= 1, so 1/y = 1 +
+    K |u| / F_max and F = K u F_max / (F_max + K |u|): K u at first, F_max as |u| grows. F_max =
+    math.inf gives the linear spring K u."""
+    K = _positive("K", K)
+    F_max = F_max if F_max == math.inf else _positive("F_max", F_max)
+    u = np.asarray(u, dtype=float)
+    if math.isinf(F_max):
+        return K * u
+    return K * u * F_max / (F_max + K * np.abs(u))
+
+
+def bolt_active_length_stretch(us, *, L, alpha_deg, un=0.0):
+    """Elongation |L e0 + u| - L of a bolt's active length L (m) when the joint it crosses moves by us
+    along the joint (m, positive the way the bolt leans) and un across it (m, opening positive); e0 =
+    (cos alpha, sin alpha) in the joint's (along, across) frame, alpha the bolt's angle to the joint
+    plane. The sum of the displacement increments along the turning active length is this elongation
+    (d|v| = dv . v / |v|)."""
+    L = _positive("L (active length)", L)
+    alpha = _angle("alpha_deg", alpha_deg, 1e-6, 179.999)
+    us = np.asarray(us, dtype=float)
+    return np.hypot(L * math.cos(alpha) + us, L * math.sin(alpha) + un) - L
+
+
+def bolt_crushed_axial_displacement(us, *, L, alpha_deg):
+    """The axial displacement the axial spring of a reinforcement receives when the joint slides by us
+    along it (un = 0), with the reference's crushing reduction (1.4-47) applied to the part of each
+    increment that comes from the active length turning (docs/models/support.md):
+
+        d u_eff = cos(alpha) ds + r_f (d delta - cos(alpha) ds),  r_f = min(1, delta(s) / s),
+
+    delta(s) = bolt_active_length_stretch(s) (the increments along the active length summed) and
+    cos(alpha) ds the increment along the bolt's original direction. Integrated by adaptive quadrature
+    (scipy.integrate.quad) of the closed-form integrand. A bolt normal to the joint (alpha = 90 degrees)
+    has the closed form us - L asinh(us / L)."""
+    from scipy import integrate
+    L = _positive("L (active length)", L)
+    alpha = _angle("alpha_deg", alpha_deg, 1e-6, 179.999)
+    c, s_a = math.cos(alpha), math.sin(alpha)
+
+    def rate(s):
+        if s == 0.0:
+            return c
+        v = math.hypot(L * c + s, L * s_a)
+        delta, ddelta = v - L, (L * c + s) / v
+        rf = min(1.0, abs(delta) / abs(s))
+        return c + rf * (ddelta - c)
+
+    def one(u):
+        value, _ = integrate.quad(rate, 0.0, float(u), epsabs=1e-15, epsrel=1e-12, limit=200)
+        return value
+
+    us = np.asarray(us, dtype=float)
+    return np.vectorize(one)(us) if us.ndim else one(us)
+
+
+def bolt_direct_shear(us, *, N, phi_deg, L, alpha_deg, Ka, Fa_max, Ks, Fs, crushing, joint_normal_stiffness=math.inf):
+    """A joint of friction angle phi (no cohesion) under a normal load N (N/m), sliding by us (m),
+    crossed by one reinforcement at alpha_deg to the joint plane, leaning the way of the shear (the
+    shear stretches it), installed once N acts. The joint closes further by un = -(Nc - N) / k_j as
+    the bolt clamps it (k_j = joint_normal_stiffness, N/m per m: kn times the contact length; the
+    default, infinite, keeps un = 0; found by fixed-point iteration, each step a contraction by about
+    Ka / k_j; not with crushing, whose integral is taken along un = 0). Returns (R, Fa, Fs_force, Nc):
+
+    - Fa = yielding_spring_force(u_a; Ka, Fa_max), u_a the stretch of the active length
+      (bolt_active_length_stretch) or, with crushing, bolt_crushed_axial_displacement;
+    - the shear spring lies across the bolt's ORIGINAL direction, n0 = (-sin a, cos a); the joint's
+      displacement along it is -us sin(alpha), so Fs_force = yielding_spring_force(-us sin a; Ks,
+      F_b) with F_b = Fs (1 + cos alpha) / 2 (1.4-40, the shear stretching the bolt); Ks = 0: none;
+    - the bolt acts on the upper block with -(Fa a + Fs_force n0), a = (L e0 + u) / |L e0 + u| the
+      active length's direction now; the joint's normal force Nc = N + Fa a_n + Fs_force n0_n and, the
+      joint sliding, its shear force Nc tan(phi); the force R that drives the upper block along the
+      joint is then Nc tan(phi) + Fa a_s + Fs_force n0_s. R - N tan(phi) with Ks = 0 and a = e0 is
+      Bjurstrom's P (cos alpha + sin alpha tan phi) (bolt_joint_shear_increase)."""
+    alpha = _angle("alpha_deg", alpha_deg, 1e-6, 179.999)
+    tan_phi = math.tan(_angle("phi_deg", phi_deg, 0.0, 89.999))
+    k_j = joint_normal_stiffness if joint_normal_stiffness == math.inf else _positive("joint_normal_stiffness", joint_normal_stiffness)
+    if crushing and not math.isinf(k_j):
+        raise ValueError("crushing is integrated along un = 0: leave joint_normal_stiffness infinite")
+    us = np.asarray(us, dtype=float)
+    n_s, n_n = -math.sin(alpha), math.cos(alpha)
+    un = np.zeros_like(us)
+    for _ in range(100):
+        if crushing:
+            ua = bolt_crushed_axial_displacement(us, L=L, alpha_deg=alpha_deg)
+        else:
+            ua = bolt_active_length_stretch(us, L=L, alpha_deg=alpha_deg, un=un)
+        Fa = yielding_spring_force(ua, K=Ka, F_max=Fa_max)
+        w = -us * math.sin(alpha) + un * math.cos(alpha)  # the joint's displacement along n0
+        if Ks > 0.0:
+            bound = Fs * (1.0 + abs(math.cos(alpha))) / 2.0
+            Fs_force = yielding_spring_force(w, K=Ks, F_max=bound)
+        else:
+            Fs_force = np.zeros_like(us)
+        vs, vn = L * math.cos(alpha) + us, L * math.sin(alpha) + un
+        length = np.hypot(vs, vn)
+        a_s, a_n = vs / length, vn / length
+        Nc = N + Fa * a_n + Fs_force * n_n
+        closing = -(Nc - N) / k_j
+        if np.all(np.abs(closing - un) <= 1e-15 * L):
+            break
+        un = closing
+    R = Nc * tan_phi + Fa * a_s + Fs_force * n_s
+    return R, Fa, Fs_force, Nc
+
+
+def bolt_resistance_per_unit_tension(*, R, Fa, N, phi_deg):
+    """What a direct shear test with one bolt measures of Bjurstrom's factor: the increase of the
+    force that slides the joint, R - N tan(phi), over the bolt's axial tension Fa (all N/m). Equal to
+    cos alpha + sin alpha tan phi when the bolt's shear spring carries nothing and its active length
+    has not turned (bolt_joint_shear_increase with P = 1)."""
+    Fa = _scalar("Fa", Fa)
+    if Fa == 0.0:
+        raise ValueError("Fa = 0: the bolt carries no tension to measure the increase by")
+    return (_scalar("R", R) - _scalar("N", N) * math.tan(_angle("phi_deg", phi_deg, 0.0, 89.999))) / Fa
+
+
 def reinforcement_capacity(*, d, sigma_b):
     """F_s = pi d^2 sigma_b / 4, the bar's tensile capacity (1.4-40): d the bar's diameter (m),
     sigma_b its yield strength (Pa)."""
