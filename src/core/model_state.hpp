@@ -77,12 +77,12 @@ void visitState(A& a, Beam& b) {
 template <class A>
 void visitState(A& a, CableMaterial& c) {
   a(c.name), a(c.young), a(c.area), a(c.density), a(c.yieldTension), a(c.yieldCompression), a(c.bondStiffness);
-  a(c.bondStrength);
+  a(c.bondStrength), a(c.spacing);
 }
 template <class A>
 void visitState(A& a, Cable& c) {
   a(c.name), a(c.material), a(c.direction), a(c.firstNode), a(c.nodeCount), a(c.firstElement), a(c.elementCount);
-  a(c.installed);
+  a(c.freeLength), a(c.pretension), a(c.head), a(c.installed);
 }
 template <class A>
 void visitState(A& a, BoltMaterial& b) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/shown.hpp"
 #include "io/scene_sections.hpp"
 
 namespace vdec {
@@ -43,8 +44,23 @@ CableMaterialDefinition readCableMaterial(TableReader& r) {
   d.spacing = r.has("spacing") ? r.positive("spacing") : 1.0;
   if (r.has("yield_tension")) m.yieldTension = r.positive("yield_tension");
   if (r.has("yield_compression")) m.yieldCompression = r.nonNegative("yield_compression", 0.0);
-  m.bondStiffness = r.positive("bond_stiffness");
-  if (r.has("bond_strength")) m.bondStrength = r.positive("bond_strength");
+  // Either the grout's spring-slider directly, or from the annulus (1.4-42 to 1.4-44): a diameter D,
+  // a grout thickness t, the grout's shear modulus (K_bond = 2 pi G / ln(1 + 2t/D)) and peak shear
+  // strength (S_bond = pi (D + 2t) tau_peak).
+  const bool annulus = r.has("grout_shear_modulus") || r.has("grout_shear_strength");
+  if (annulus) {
+    for (const char* key : {"bond_stiffness", "bond_strength"})
+      if (r.has(key)) r.fail(key, "give the grout either as bond_stiffness and bond_strength or by its annulus (diameter, grout_thickness, grout_shear_modulus, grout_shear_strength), not both");
+    const double diameter = r.positive("diameter"), thickness = r.positive("grout_thickness");
+    m.bondStiffness = 2.0 * std::numbers::pi * r.positive("grout_shear_modulus") / std::log(1.0 + 2.0 * thickness / diameter);
+    if (r.has("grout_shear_strength"))
+      m.bondStrength = std::numbers::pi * (diameter + 2.0 * thickness) * r.positive("grout_shear_strength");
+  } else {
+    for (const char* key : {"diameter", "grout_thickness"})
+      if (r.has(key)) r.fail(key, "describes the grout's annulus: give grout_shear_modulus too (or leave it out)");
+    m.bondStiffness = r.positive("bond_stiffness");
+    if (r.has("bond_strength")) m.bondStrength = r.positive("bond_strength");
+  }
   r.finish();
   return d;
 }
@@ -93,6 +109,13 @@ CableDefinition readCable(TableReader& r) {
   d.from = points[0];
   d.to = points[1];
   d.elements = static_cast<int>(r.integer("elements", 1, kMostElements));
+  const double length = norm(d.to - d.from);
+  d.freeLength = r.nonNegative("free_length", 0.0);
+  if (!(d.freeLength < length)) r.fail("free_length", "must be shorter than the cable (" + shown(length) + " m): some of it must be grouted");
+  d.head = r.boolean("head", false);
+  d.pretension = r.nonNegative("pretension", 0.0);
+  if (d.pretension > 0.0 && !(d.head && d.freeLength > 0.0))
+    r.fail("pretension", "is held between the head plate and the grouted anchor: give head = true and a free_length > 0");
   r.finish();
   return d;
 }

@@ -165,8 +165,13 @@ void writeCables(nlohmann::json& j, const Model& m) {
     node1.push_back(n[1]);
   }
   std::vector<std::string> names;
-  for (const Cable& c : st.cables) names.push_back(c.name);
+  std::vector<int> installed;
+  for (const Cable& c : st.cables) {
+    names.push_back(c.name);
+    installed.push_back(c.installed);
+  }
   j["cables"] = {{"names", names},
+                 {"installed", installed},
                  {"nodes", {{"cable", nd.cable}, {"x0", x0}, {"y0", y0}, {"displacement", nd.displacement},
                             {"slip", nd.slip}, {"bond_force", nd.bondForce}, {"grouted", grouted}, {"slipping", nd.slipping},
                             {"mass", nd.mass}}},

@@ -132,6 +132,7 @@ Grid collect(const Model& m) {
     g.velocity.push_back(cn.velocity[i] * along);
   }
   for (int e = 0; e < st.cableElements.size(); ++e) {
+    if (!st.cables[st.cableElements.cable[e]].installed) continue;
     g.cells.push_back({firstCableNode + st.cableElements.node[e][0], firstCableNode + st.cableElements.node[e][1]});
     g.types.push_back(kLine);
     cellDefaults(g, 6, -1);

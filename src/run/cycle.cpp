@@ -161,6 +161,12 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
   // Stress present at the start (in situ, or joints set by the direct solve) is energy the model
   // was given.
   for (const Contact& c : model_.contacts) initial += c.springEnergy;
+  const Structures& st = model_.structures;
+  for (int e = 0; e < st.cableElements.size(); ++e) {
+    const CableMaterial& mat = st.cableMaterials[st.cables[st.cableElements.cable[e]].material];
+    const double force = st.cableElements.axialForce[e];
+    initial += 0.5 * force * force * st.cableElements.restLength[e] / (mat.young * mat.area);
+  }
   const Zones& zn = model_.zones;
   for (int z = 0; z < zn.size(); ++z) {
     const BlockMaterial& mat = model_.blockMaterials[zn.material[z]];
@@ -482,7 +488,9 @@ void Cycle::beginPhase(const PhaseChanges& changes, const std::string& phaseName
   // those installed, stress-free where the rock is now.
   for (const int cable : changes.freeCables) energy_.withdraw(removeCable(model_, cable));
   for (const int bolt : changes.freeBolts) removeBolt(model_, bolt);
-  for (const int cable : changes.installCables) installCable(model_, cable);
+  // A pretension's elastic energy comes without work: supplied as a negative removal.
+  for (const int cable : changes.installCables)
+    energy_.withdraw(-installCable(model_, cable, "phase '" + phaseName + "'"));
   for (const int bolt : changes.installBolts) installBolt(model_, bolt, "phase '" + phaseName + "'");
   if (!changes.installBeams.empty() || !changes.installCables.empty() || !changes.installBolts.empty()) {
     undampedStep_ = std::min(undampedStep_, stepLimitOf("structures"));

@@ -118,7 +118,7 @@ Phase buildPhase(const PhaseDefinition& d, Model& m, std::optional<Model>& geome
   }
   for (const BeamDefinition& b : d.beams) {
     if (active.count(b.name))
-      b.origin.fail("name", "'" + b.name + "' names a boundary or beam active when the phase starts: give the beam another");
+      b.origin.fail("name", "'" + b.name + "' names a support or boundary active when the phase starts: give the beam another");
     const int index = addBeam(m, b);
     active.insert(b.name);
     c.installBeams.push_back(index);

@@ -144,6 +144,9 @@ int addCable(Model& m, const CableDefinition& d) {
   cable.name = d.name;
   cable.material = material;
   cable.direction = (1.0 / norm(d.to - d.from)) * (d.to - d.from);
+  cable.freeLength = d.freeLength;
+  cable.pretension = d.pretension / mat.spacing;
+  cable.head = d.head;
   cable.firstNode = nd.size();
   cable.firstElement = el.size();
   for (int i = 0; i <= d.elements; ++i) {
@@ -219,9 +222,16 @@ void addStructures(Model& m, const SceneDefinition& s) {
     mat.bondStrength /= d.spacing;
     mat.yieldTension /= d.spacing;
     mat.yieldCompression /= d.spacing;
+    mat.spacing = d.spacing;
     st.cableMaterials.push_back(mat);
   }
-  for (const CableDefinition& d : s.cables) installCable(m, addCable(m, d));
+  for (const CableDefinition& d : s.cables) {
+    try {
+      installCable(m, addCable(m, d), "");
+    } catch (const SceneError& e) {
+      d.origin.fail("head", e.what());
+    }
+  }
   for (const CableNodeDefinition& d : s.cableNodes) {
     const int cable = cableNamed(m, d.origin, d.cable);
     const Cable& c = st.cables[cable];

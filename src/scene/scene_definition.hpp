@@ -179,6 +179,9 @@ struct CableDefinition {
   std::string material;
   Vec2 from, to;
   int elements = 1;
+  double freeLength = 0.0;   // m from the first point left ungrouted
+  double pretension = 0.0;   // N per cable, on the free length, reacted by the head plate
+  bool head = false;         // a plate holds the first node to the rock there
   Origin origin;
 };
 

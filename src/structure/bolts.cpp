@@ -124,15 +124,16 @@ bool holdAt(const Model& m, int v, Vec2 p, RockHold& hold) {
   const double along = std::clamp(dot(p - g.position[g0], g.position[g1] - g.position[g0]) /
                                       dot(g.position[g1] - g.position[g0], g.position[g1] - g.position[g0]),
                                   0.0, 1.0);
-  for (int k = m.gridpointZones.start[g0]; k < m.gridpointZones.start[g0 + 1]; ++k) {
-    const int z = m.gridpointZones.slot[k] / 3;
+  // (Looked for among the block's zones: installation may come before the gridpoint-to-zone index.)
+  for (int z = 0; z < m.zones.size(); ++z) {
+    if (m.zones.block[z] != b) continue;
     const auto& corner = m.zones.gridpoint[z];
-    const auto at1 = std::find(corner.begin(), corner.end(), g1);
-    if (at1 == corner.end()) continue;
+    const auto at0 = std::find(corner.begin(), corner.end(), g0), at1 = std::find(corner.begin(), corner.end(), g1);
+    if (at0 == corner.end() || at1 == corner.end()) continue;
     hold.block = b;
     hold.zone = z;
     hold.weight = {};
-    hold.weight[static_cast<std::size_t>(std::find(corner.begin(), corner.end(), g0) - corner.begin())] = 1.0 - along;
+    hold.weight[static_cast<std::size_t>(at0 - corner.begin())] = 1.0 - along;
     hold.weight[static_cast<std::size_t>(at1 - corner.begin())] = along;
     return true;
   }

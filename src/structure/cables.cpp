@@ -4,9 +4,19 @@
 #include <cmath>
 
 #include "structure/lumped_motion.hpp"
+#include "core/errors.hpp"
+#include "core/shown.hpp"
 #include "structure/rock_point.hpp"
 
 namespace vdec {
+
+namespace {
+
+bool headPlate(const Cable& cable, int node, const CableNodes& nd) {
+  return cable.head && node == cable.firstNode && nd.hold[node].block >= 0;
+}
+
+}  // namespace
 
 CableStepTotals computeCableForces(Model& m, double dt) {
   CableStepTotals totals;
@@ -37,6 +47,12 @@ CableStepTotals computeCableForces(Model& m, double dt) {
     if (!cable.installed || nd.hold[i].block < 0) continue;
     const CableMaterial& mat = st.cableMaterials[cable.material];
     const RockPointNow rock = rockPointNow(m, nd.hold[i]);
+    if (headPlate(cable, i, nd)) {
+      // The plate holds the node where the rock is: what pulls the node, the rock takes.
+      nd.bondForce[i] = -(nd.force[i] + nd.mass[i] * dot(m.gravity, cable.direction) + nd.appliedForce[i]);
+      loadRock(m, nd.hold[i], rock, -nd.bondForce[i] * cable.direction);
+      continue;
+    }
     const double slipRate = nd.velocity[i] - dot(rock.velocity, cable.direction);
     nd.slip[i] += dt * slipRate;
     const double strength = mat.bondStrength * nd.length[i];
@@ -56,6 +72,12 @@ MotionStepTotals integrateCableNodes(Model& m, double dt, double alpha, double l
   for (int i = 0; i < nd.size(); ++i) {
     const Cable& cable = st.cables[nd.cable[i]];
     if (!cable.installed || nd.fixed[i]) continue;
+    if (headPlate(cable, i, nd)) {
+      // Moves with the rock under the plate, whose motion this step has already made.
+      nd.velocity[i] = dot(rockPointNow(m, nd.hold[i]).velocity, cable.direction);
+      nd.displacement[i] += dt * nd.velocity[i];
+      continue;
+    }
     // As a rigid block's degree of freedom (1.3-21); the elements' force is internal, gravity
     // along the cable, the loads and the grout's force external (the grout's springs and slip
     // are in the work done on node and rock together).
@@ -90,7 +112,10 @@ double cableTimeStep(const Model& m, double frac, double zoneFraction) {
   for (int i = 0; i < nd.size(); ++i) {
     const Cable& cable = st.cables[nd.cable[i]];
     if (!cable.installed || nd.hold[i].block < 0) continue;
-    const double k = st.cableMaterials[cable.material].bondStiffness * nd.length[i];
+    // A head plate passes its element's stiffness to the rock; grout, its springs.
+    const CableMaterial& mat = st.cableMaterials[cable.material];
+    const double k = headPlate(cable, i, nd) ? mat.young * mat.area / st.cableElements.restLength[cable.firstElement]
+                                             : mat.bondStiffness * nd.length[i];
     row[i] += k / nd.mass[i];
     const CableNodes::Hold& h = nd.hold[i];
     if (h.zone < 0) blockStiffness[h.block] += k;
@@ -108,21 +133,49 @@ double cableTimeStep(const Model& m, double frac, double zoneFraction) {
   return dt;
 }
 
-void installCable(Model& m, int index) {
+double installCable(Model& m, int index, const std::string& when) {
   Structures& st = m.structures;
   Cable& cable = st.cables[index];
+  const CableMaterial& mat = st.cableMaterials[cable.material];
   CableNodes& nd = st.cableNodes;
-  for (int i = cable.firstNode; i < cable.firstNode + cable.nodeCount; ++i) {
+  CableElements& el = st.cableElements;
+  const int first = cable.firstNode, last = first + cable.nodeCount;
+  const Vec2 start = nd.position[first];
+  std::vector<char> grouted(static_cast<std::size_t>(cable.nodeCount), 0);
+  for (int i = first; i < last; ++i) {
     CableNodes::Hold hold;
-    if (findRockPoint(m, nd.position[i], hold) <= m.roundingLength) {
+    const bool plate = cable.head && i == first;
+    const double along = norm(nd.position[i] - start), element = el.restLength[cable.firstElement];
+    const double reach = findRockPoint(m, nd.position[i], hold);
+    nd.hold[i] = {};
+    if (reach <= m.roundingLength && (plate || along >= cable.freeLength - 1e-9 * element)) {
       nd.hold[i] = hold;
       nd.position[i] = rockPointNow(m, hold).position;
+      grouted[static_cast<std::size_t>(i - first)] = !plate;
+    } else if (plate) {
+      throw SceneError(when + (when.empty() ? "" : ": ") + "cable '" + cable.name + "': its head at (" +
+                       shown(nd.position[i].x) + ", " + shown(nd.position[i].y) + ") lies on no block (the nearest is " +
+                       shown(reach) + " m away, beyond the rounding length): place the first point on the rock, or set head = false");
     }
     nd.displacement[i] = nd.velocity[i] = nd.slip[i] = nd.bondForce[i] = 0.0;
+    nd.length[i] = 0.0;
+  }
+  // The grout's length at a node: half of each element grouted at both ends.
+  double energy = 0.0;
+  for (int e = cable.firstElement; e < cable.firstElement + cable.elementCount; ++e) {
+    const int a = el.node[e][0], b = el.node[e][1];
+    const bool bonded = grouted[static_cast<std::size_t>(a - first)] && grouted[static_cast<std::size_t>(b - first)];
+    if (bonded) {
+      nd.length[a] += 0.5 * el.restLength[e];
+      nd.length[b] += 0.5 * el.restLength[e];
+    }
+    el.axialForce[e] = bonded ? 0.0 : cable.pretension;
+    energy += 0.5 * el.axialForce[e] * el.axialForce[e] * el.restLength[e] / (mat.young * mat.area);
   }
   m.blocks.boundaryForce.resize(m.blocks.size());
   m.blocks.boundaryMoment.resize(m.blocks.size());
   cable.installed = true;
+  return energy;
 }
 
 double removeCable(Model& m, int index) {
@@ -139,6 +192,7 @@ double removeCable(Model& m, int index) {
   for (int i = cable.firstNode; i < cable.firstNode + cable.nodeCount; ++i) {
     energy += 0.5 * nd.mass[i] * nd.velocity[i] * nd.velocity[i];
     nd.velocity[i] = nd.force[i] = nd.bondForce[i] = 0.0;
+    nd.hold[i] = {};
   }
   cable.installed = false;
   return energy;

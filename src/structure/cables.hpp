@@ -19,9 +19,12 @@ CableStepTotals computeCableForces(Model& model, double dt);
 MotionStepTotals integrateCableNodes(Model& model, double dt, double alpha, double localDamping);
 // Gershgorin's bound on the nodes' axial chain with the grout, and the limits of the rock it holds.
 double cableTimeStep(const Model& model, double frac, double zoneFraction);
-// Puts cable `index` into the model: each node's grout holds the rock at its point (none outside
-// the rock: an ungrouted length), the node placed where that point is now.
-void installCable(Model& model, int index);
+// Puts cable `index` into the model: each node beyond the free length is grouted to the rock at
+// its point (none outside the rock: an ungrouted length), the node placed where that point is now;
+// a head plate holds the first node to the rock there; the free length's elements carry the
+// pretension. Returns the elastic energy the pretension puts in (J/m). A head on no rock is a
+// SceneError naming `when` and the cable.
+double installCable(Model& model, int index, const std::string& when);
 // Takes cable `index` out (a phase's free): its nodes stop, its grout lets go. Returns the kinetic
 // and strain energy it took with it (J/m).
 double removeCable(Model& model, int index);

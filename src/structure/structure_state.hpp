@@ -104,6 +104,7 @@ struct CableMaterial {
   double yieldCompression = INFINITY;
   double bondStiffness = 0.0;    // k_bond / spacing, N/m per m of cable per m of thickness
   double bondStrength = INFINITY;  // s_bond / spacing, N per m of cable per m of thickness
+  double spacing = 1.0;          // m, out of plane (a cable's pretension is divided by it)
 };
 
 // A straight cable of axial elements along `direction`; its nodes move along it only (no
@@ -114,6 +115,9 @@ struct Cable {
   Vec2 direction;                // unit, first point to last
   int firstNode = 0, nodeCount = 0;
   int firstElement = 0, elementCount = 0;
+  double freeLength = 0.0;       // m from the first point: not grouted
+  double pretension = 0.0;       // N per m of thickness, in the free length's elements when installed
+  bool head = false;             // the first node held to the rock by a plate (no slip)
   bool installed = false;
 };
 

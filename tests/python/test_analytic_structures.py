@@ -890,3 +890,75 @@ def test_discrete_slip_scalar_forms_are_the_chains_segment_and_head():
     assert st.cable_discrete_slip_segment_force(0.95, **args) == cable["force"][9]
     assert st.cable_discrete_slip_segment_force(2.0, **args) == cable["force"][19]
     assert st.cable_discrete_slip_head_displacement(**args) == cable["displacement"][0]
+
+
+# ================================================================ local reinforcement (bolts)
+
+@REQ
+def test_yielding_spring_known_values_and_its_law():
+    # K u F / (F + K u): half the bound when K u = F_max; linear when unbounded; odd in u.
+    assert st.yielding_spring_force(1e-3, K=1e8, F_max=1e5) == pytest.approx(5e4, rel=1e-15)
+    assert st.yielding_spring_force(-1e-3, K=1e8, F_max=1e5) == pytest.approx(-5e4, rel=1e-15)
+    assert st.yielding_spring_force(2e-3, K=1e8, F_max=math.inf) == pytest.approx(2e5, rel=1e-15)
+    # It solves dF/du = K (1 - F / F_max)^2 (1.4-48, 1.4-49 loading from zero), F(0) = 0.
+    u, h = np.linspace(1e-4, 0.05, 50), 1e-8
+    F = st.yielding_spring_force(u, K=1e8, F_max=1e5)
+    slope = (st.yielding_spring_force(u + h, K=1e8, F_max=1e5) - st.yielding_spring_force(u - h, K=1e8, F_max=1e5)) / (2 * h)
+    assert slope == pytest.approx(1e8 * (1.0 - F / 1e5) ** 2, rel=1e-6)
+
+
+@REQ
+def test_active_length_stretch_is_the_geometry():
+    # 0.2 m at 45 degrees, slid 20 mm: |(0.1414 + 0.02, 0.1414)| - 0.2
+    assert st.bolt_active_length_stretch(0.02, L=0.2, alpha_deg=45.0) == pytest.approx(
+        math.hypot(0.2 / math.sqrt(2) + 0.02, 0.2 / math.sqrt(2)) - 0.2, rel=1e-14, abs=0)
+    # small slides: us cos(alpha); normal opening: un sin(alpha)
+    assert st.bolt_active_length_stretch(1e-7, L=0.2, alpha_deg=60.0) == pytest.approx(0.5e-7, rel=1e-5, abs=0)
+    assert st.bolt_active_length_stretch(0.0, L=0.2, alpha_deg=60.0, un=1e-7) == pytest.approx(
+        math.sin(math.radians(60.0)) * 1e-7, rel=1e-5, abs=0)
+
+
+@REQ
+def test_crushed_axial_displacement_closed_form_for_a_normal_bolt():
+    # alpha = 90: u_eff = us - L asinh(us / L) (derivation in the docstring)
+    for us in (1e-3, 0.02, 0.1):
+        assert st.bolt_crushed_axial_displacement(us, L=0.2, alpha_deg=90.0) == pytest.approx(
+            us - 0.2 * math.asinh(us / 0.2), rel=1e-8, abs=0)
+    # crushing only reduces what the turning adds: between the straight part and the stretch
+    us = 0.02
+    crushed = st.bolt_crushed_axial_displacement(us, L=0.2, alpha_deg=45.0)
+    assert us * math.cos(math.radians(45.0)) < crushed < st.bolt_active_length_stretch(us, L=0.2, alpha_deg=45.0)
+
+
+@REQ
+def test_direct_shear_reduces_to_bjurstrom_for_an_axial_bolt_that_does_not_turn():
+    # Shear spring off, a long active length: (R - N tan phi) / Fa -> cos a + sin a tan phi
+    for alpha in (30.0, 45.0, 60.0):
+        R, Fa, Fs, Nc = st.bolt_direct_shear(1e-3, N=1e5, phi_deg=30.0, L=1e4, alpha_deg=alpha, Ka=1e8, Fa_max=1e5,
+                                             Ks=0.0, Fs=8e4, crushing=False)
+        assert Fs == 0.0
+        assert st.bolt_resistance_per_unit_tension(R=R, Fa=Fa, N=1e5, phi_deg=30.0) == pytest.approx(
+            st.bolt_joint_shear_increase(P=1.0, alpha_deg=alpha, phi_deg=30.0), rel=1e-6)
+        assert Nc == pytest.approx(1e5 + Fa * math.sin(math.radians(alpha)), rel=1e-6)
+
+
+@REQ
+def test_direct_shear_shear_bound_follows_the_sense_of_shear():
+    # Bound F_s (1 + cos a) / 2: stretched at 45 degrees, shortened at 135; a huge slide reaches it.
+    big = 10.0
+    for alpha, bound in ((45.0, 8e4 * (1 + math.cos(math.radians(45.0))) / 2),
+                         (135.0, 8e4 * (1 - math.cos(math.radians(45.0))) / 2), (90.0, 4e4)):
+        _, _, Fs, _ = st.bolt_direct_shear(big, N=1e5, phi_deg=30.0, L=0.2, alpha_deg=alpha, Ka=1e8, Fa_max=1e5,
+                                           Ks=2e7, Fs=8e4, crushing=False)
+        assert abs(Fs) == pytest.approx(bound, rel=1e-3)
+    # the joint's closure under the clamp, when asked for, converges: un = -(Nc - N) / k_j
+    R1, Fa1, _, N1 = st.bolt_direct_shear(0.02, N=1e5, phi_deg=30.0, L=0.2, alpha_deg=45.0, Ka=1e8, Fa_max=1e5,
+                                          Ks=2e7, Fs=8e4, crushing=False, joint_normal_stiffness=1e9)
+    R0, Fa0, _, N0 = st.bolt_direct_shear(0.02, N=1e5, phi_deg=30.0, L=0.2, alpha_deg=45.0, Ka=1e8, Fa_max=1e5,
+                                          Ks=2e7, Fs=8e4, crushing=False)
+    assert Fa1 < Fa0  # the closure shortens the stretch
+    with pytest.raises(ValueError):
+        st.bolt_direct_shear(0.02, N=1e5, phi_deg=30.0, L=0.2, alpha_deg=45.0, Ka=1e8, Fa_max=1e5, Ks=2e7, Fs=8e4,
+                             crushing=True, joint_normal_stiffness=1e9)
+    with pytest.raises(ValueError):
+        st.bolt_resistance_per_unit_tension(R=1.0, Fa=0.0, N=1.0, phi_deg=30.0)

@@ -3,26 +3,14 @@ errors of their keys, ties to a deformable block, self-weight, a restart across 
 independence of the thread count."""
 import json
 import math
-import os
 import re
 import subprocess
-from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-VDEC = os.environ.get("VDEC_EXECUTABLE", str(ROOT / "build" / "vdec"))
-pytestmark = pytest.mark.skipif(not Path(VDEC).is_file(), reason="vdec is not built")
+from scene_runs import last_vtk_cell_arrays, VDEC, needs_vdec, run
 
-
-def run(tmp_path, text, *extra, name="scene"):
-    scene = tmp_path / f"{name}.toml"
-    scene.write_text(text)
-    out = tmp_path / f"{name}-out"
-    done = subprocess.run([VDEC, "run", str(scene), "--out", str(out), *extra], capture_output=True, text=True,
-                          timeout=120)
-    results = out / "results.json"
-    return done, json.loads(results.read_text()) if results.is_file() else None
+pytestmark = needs_vdec
 
 
 # A beam lying on a base block, tied to it; a point load at its middle.
@@ -182,13 +170,9 @@ def test_beam_results_do_not_depend_on_the_thread_count(tmp_path):
 
 @pytest.mark.requirements("REQ-STRUCT-004")
 def test_vtk_snapshots_hold_the_beam_elements_of_results_json(tmp_path):
-    import xml.etree.ElementTree as ET
     done, results = run(tmp_path, BASE + "\n[output]\nvtk_every = 100000\n")
     assert done.returncode == 0, done.stderr
-    last = sorted((tmp_path / "scene-out" / "vtk").glob("snapshot_*.vtu"))[-1]
-    piece = ET.parse(last).getroot().find("UnstructuredGrid/Piece")
-    arrays = {a.get("Name"): [float(x) for x in (a.text or "").split()] for a in piece.iter("DataArray")}
-    kind_name = next(name for name in arrays if name.startswith("kind"))
+    arrays, kind_name = last_vtk_cell_arrays(tmp_path / "scene-out")
     assert "5 beam element" in kind_name
     kind = arrays[kind_name]
     beams = [i for i, k in enumerate(kind) if k == 5]
@@ -335,9 +319,9 @@ def test_a_phase_installs_a_beam_stress_free_on_the_rock_as_it_has_moved_and_a_l
 
 STAGED_BAD = [
     ("phase beam of a boundary's name", STAGED.replace('[[phase.beam]]\nname = "b"', '[[phase.beam]]\nname = "press"'), "name",
-     "names a boundary or beam active"),
+     "names a support or boundary active"),
     ("free of nothing", STAGED + '[[phase]]\nname = "free"\nstop = { cycles = 10 }\nfree = ["c"]\n', "free",
-     "no boundary or beam named 'c'"),
+     "no boundary, beam, cable or bolt named 'c'"),
     ("phase beam node of no beam", STAGED.replace('[[phase.beam_node]]\nbeam = "b"', '[[phase.beam_node]]\nbeam = "c"'), "beam",
      "no [[beam]] is named 'c'"),
     ("scene beam of a boundary's name", STAGED.replace("[[phase]]\nname = \"press\"",

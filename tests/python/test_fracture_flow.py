@@ -2,27 +2,15 @@
 the scene errors of its keys, the instability it detects, phases that switch it on and a restart
 across them, and its independence of the thread count."""
 import json
-import os
 import re
 import subprocess
-from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-VDEC = os.environ.get("VDEC_EXECUTABLE", str(ROOT / "build" / "vdec"))
+from scene_runs import ROOT, VDEC, needs_vdec, run
+
 SCENE = ROOT / "tests" / "python" / "fixtures" / "fluid_joint.toml"
-pytestmark = pytest.mark.skipif(not Path(VDEC).is_file(), reason="vdec is not built")
-
-
-def run(tmp_path, text, *extra, name="scene"):
-    scene = tmp_path / f"{name}.toml"
-    scene.write_text(text)
-    out = tmp_path / f"{name}-out"
-    done = subprocess.run([VDEC, "run", str(scene), "--out", str(out), *extra], capture_output=True, text=True,
-                          timeout=120)
-    results = out / "results.json"
-    return done, json.loads(results.read_text()) if results.is_file() else None
+pytestmark = needs_vdec
 
 
 BASE = SCENE.read_text()

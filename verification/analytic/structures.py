@@ -790,6 +790,27 @@ def winkler_length_for_accuracy(*, tolerance=1e-3, measure="deflection"):
     return optimize.brentq(excess, grid[last], grid[last + 1], xtol=1e-12)
 
 
+def cable_lock_off_force(*, P, free_length, bond_length, EA, k_bond, n_bond=None):
+    """Force left in a tensioned anchor once its grout has taken the pretension up, in rigid rock:
+    a head plate fixed to the rock, a free length L_f whose elements start at the tension P, then a
+    grouted anchor of length L_b. The anchor's head moves by d towards the plate, so the free length
+    shortens: F = P - (EA / L_f) d and F = k_a d, whence
+
+        F = P k_a / (k_a + EA / L_f),
+
+    k_a the anchor's head stiffness: EA alpha tanh(alpha L_b) for the continuous grout (far end free;
+    cable_elastic_displacement), or with n_bond elements the discrete chain's
+    1 / cable_discrete_displacement(x=0, F0=1) (springs k_bond h at the nodes, half at its ends)."""
+    P = _non_negative("P (pretension)", P)
+    L_f = _positive("free_length", free_length)
+    if n_bond is None:
+        head = cable_elastic_displacement(0.0, F0=1.0, L=bond_length, EA=EA, k_bond=k_bond)
+    else:
+        head = cable_discrete_displacement(0.0, F0=1.0, L=bond_length, EA=EA, k_bond=k_bond, n=n_bond)
+    k_a = 1.0 / float(head)
+    return P * k_a / (k_a + EA / L_f)
+
+
 # ================================================================ a bolt across a joint
 #
 # Bjurstrom (1974): a bolt carrying an axial tension P across a joint of friction angle phi raises the
@@ -889,8 +910,9 @@ def bolt_crushed_axial_displacement(us, *, L, alpha_deg):
 
 def bolt_direct_shear(us, *, N, phi_deg, L, alpha_deg, Ka, Fa_max, Ks, Fs, crushing, joint_normal_stiffness=math.inf):
     """A joint of friction angle phi (no cohesion) under a normal load N (N/m), sliding by us (m),
-    crossed by one reinforcement at alpha_deg to the joint plane, leaning the way of the shear (the
-    shear stretches it), installed once N acts. The joint closes further by un = -(Nc - N) / k_j as
+    crossed by one reinforcement at alpha_deg to the joint plane (measured from the direction of
+    shear: below 90 degrees it leans the way of the shear, which stretches it; above 90, against
+    it, which shortens it), installed once N acts. The joint closes further by un = -(Nc - N) / k_j as
     the bolt clamps it (k_j = joint_normal_stiffness, N/m per m: kn times the contact length; the
     default, infinite, keeps un = 0; found by fixed-point iteration, each step a contraction by about
     Ka / k_j; not with crushing, whose integral is taken along un = 0). Returns (R, Fa, Fs_force, Nc):
@@ -899,7 +921,8 @@ def bolt_direct_shear(us, *, N, phi_deg, L, alpha_deg, Ka, Fa_max, Ks, Fs, crush
       (bolt_active_length_stretch) or, with crushing, bolt_crushed_axial_displacement;
     - the shear spring lies across the bolt's ORIGINAL direction, n0 = (-sin a, cos a); the joint's
       displacement along it is -us sin(alpha), so Fs_force = yielding_spring_force(-us sin a; Ks,
-      F_b) with F_b = Fs (1 + cos alpha) / 2 (1.4-40, the shear stretching the bolt); Ks = 0: none;
+      F_b) with F_b = Fs (1 + cos alpha) / 2 (1.4-40: Fs (1 + |cos|) / 2 when the shear stretches
+      the bolt, Fs (1 - |cos|) / 2 when it shortens it); Ks = 0: none;
     - the bolt acts on the upper block with -(Fa a + Fs_force n0), a = (L e0 + u) / |L e0 + u| the
       active length's direction now; the joint's normal force Nc = N + Fa a_n + Fs_force n0_n and, the
       joint sliding, its shear force Nc tan(phi); the force R that drives the upper block along the
@@ -921,7 +944,8 @@ def bolt_direct_shear(us, *, N, phi_deg, L, alpha_deg, Ka, Fa_max, Ks, Fs, crush
         Fa = yielding_spring_force(ua, K=Ka, F_max=Fa_max)
         w = -us * math.sin(alpha) + un * math.cos(alpha)  # the joint's displacement along n0
         if Ks > 0.0:
-            bound = Fs * (1.0 + abs(math.cos(alpha))) / 2.0
+            # us > 0 along the joint's s axis: the shear stretches the bolt when cos(alpha) > 0
+            bound = Fs * (1.0 + math.cos(alpha)) / 2.0
             Fs_force = yielding_spring_force(w, K=Ks, F_max=bound)
         else:
             Fs_force = np.zeros_like(us)
