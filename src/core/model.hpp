@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "bem/far_field_state.hpp"
 #include "boundary/time_function.hpp"
 #include "flow/flow_state.hpp"
 #include "structure/structure_state.hpp"
@@ -356,6 +357,7 @@ struct Model {
   std::vector<TimeFunction> timeFunctions;
   FlowState flow;  // fluid in the joints, when the scene has a [fluid] table
   Structures structures;  // beams and their ties to the rock
+  BoundaryElementField boundaryElements;  // the far field beyond the outer boundary, when the scene has one
   // The outline edges of deformable blocks (outer boundaries and holes), each directed with the
   // block on its left: gridpoints from -> to.
   struct BoundaryEdge {

@@ -111,11 +111,16 @@ void visitState(A& a, Structures& s) {
   a(x.axialDisplacement), a(x.axialForce), a(x.shearForce), a(x.broken);
 }
 template <class A>
+void visitState(A& a, BoundaryElementField& b) {
+  a(b.on), a(b.young), a(b.poisson), a(b.halfPlane), a(b.surfaceY), a(b.closed), a(b.node), a(b.firstGridpoint);
+  a(b.gridpoints), a(b.edge), a(b.stiffness), a(b.initialForce), a(b.force), a(b.buildSeconds);
+}
+template <class A>
 void visitState(A& a, Model& m) {
   a(m.blockMaterials), a(m.jointMaterials), a(m.blocks), a(m.vertices), a(m.gridpoints), a(m.zones);
   a(m.gridpointZones.start), a(m.gridpointZones.slot), a(m.loadedEdges), a(m.drivenVelocities);
   a(m.boundaryConditions), a(m.viscousEdges), a(m.rigidViscousEdges), a(m.freeFields), a(m.initialWaves);
-  a(m.timeFunctions), a(m.flow), a(m.structures), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
+  a(m.timeFunctions), a(m.flow), a(m.structures), a(m.boundaryElements), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
   a(m.defaultJoint), a(m.gravity), a(m.roundingLength), a(m.contactTolerance), a(m.time), a(m.cycle);
 }
 

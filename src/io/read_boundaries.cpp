@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/shown.hpp"
 #include "io/scene_sections.hpp"
 
 namespace vdec {
@@ -224,12 +225,32 @@ BoundaryDefinition readBoundary(TableReader& r) {
   return d;
 }
 
+BoundaryElementsDefinition readBoundaryElements(TableReader& t) {
+  BoundaryElementsDefinition d;
+  d.origin = t.origin();
+  d.young = t.positive("young");
+  d.poisson = t.number("poisson");
+  if (!(d.poisson > -1.0 && d.poisson < 0.5)) t.fail("poisson", "must lie in (-1, 0.5), got " + shown(d.poisson));
+  d.halfPlane = t.boolean("half_plane", false);
+  if (d.halfPlane) d.surfaceY = t.number("surface_y");
+  else if (t.has("surface_y")) t.fail("surface_y", "is the free surface of a half-plane: give half_plane = true, or remove it");
+  d.block = t.string("block", "");
+  d.x = readRange(t, "x");
+  d.y = readRange(t, "y");
+  d.r = readRange(t, "r");
+  d.angle = readRange(t, "angle");
+  d.centre = t.vec2("centre", {0.0, 0.0});
+  t.finish();
+  return d;
+}
+
 void readBoundaries(TableReader& top, SceneDefinition& scene) {
   for (auto [table, prefix] : top.tables("boundary")) {
     TableReader r(*table, prefix, top.file());
     scene.boundaries.push_back(readBoundary(r));
     r.finish();
   }
+  if (auto t = top.subtable("boundary_elements")) scene.boundaryElements = readBoundaryElements(*t);
   for (auto [table, prefix] : top.tables("initial_wave")) {
     TableReader r(*table, prefix, top.file());
     InitialWaveDefinition d;

@@ -115,6 +115,7 @@ PhaseDefinition readPhase(TableReader& r, std::vector<std::string>& warnings) {
     TableReader t(*table, prefix, r.file());
     d.cables.push_back(readCable(t));
   }
+  if (auto t = r.subtable("boundary_elements")) d.boundaryElements = readBoundaryElements(*t);
   for (auto [table, prefix] : r.tables("bolt")) {
     TableReader t(*table, prefix, r.file());
     d.bolts.push_back(readBolt(t));

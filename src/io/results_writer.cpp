@@ -10,6 +10,7 @@
 #include <numbers>
 #include <nlohmann/json.hpp>
 
+#include "bem/far_field.hpp"
 #include "contact/contact_geometry.hpp"
 #include "flow/fracture_flow.hpp"
 #include "geometry/zoning.hpp"
@@ -205,6 +206,28 @@ void writeBolts(nlohmann::json& j, const Model& m) {
                                     {"axial_force", x.axialForce}, {"shear_force", x.shearForce},
                                     {"axial_displacement", x.axialDisplacement}, {"shear_displacement", shearDisplacement},
                                     {"broken", x.broken}}}};
+}
+
+// The boundary-element far field: its nodes (as installed, their displacement and the region's
+// force on them), and the cost of forming its stiffness.
+void writeBoundaryElements(nlohmann::json& j, const Model& m) {
+  const BoundaryElementField& be = m.boundaryElements;
+  std::vector<double> x, y, ux, uy, fx, fy;
+  std::vector<int> joined;
+  for (int i = 0; i < be.size(); ++i) {
+    const Vec2 u = boundaryElementNodeDisplacement(m, i);
+    x.push_back(be.node[i].x);
+    y.push_back(be.node[i].y);
+    ux.push_back(u.x);
+    uy.push_back(u.y);
+    fx.push_back(be.force[i].x);
+    fy.push_back(be.force[i].y);
+    joined.push_back(be.firstGridpoint[i + 1] - be.firstGridpoint[i]);
+  }
+  j["boundary_elements"] = {{"nodes", be.size()}, {"half_plane", be.halfPlane}, {"closed", be.closed},
+                            {"build_seconds", be.buildSeconds},
+                            {"interface", {{"x0", x}, {"y0", y}, {"displacement_x", ux}, {"displacement_y", uy},
+                                           {"force_x", fx}, {"force_y", fy}, {"gridpoints", joined}}}};
 }
 
 // Fluid in the joints: the domains (at their present centres), the knots (at their present
@@ -408,6 +431,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
   if (!m.structures.beams.empty()) writeStructures(j, m);
   if (!m.structures.cables.empty()) writeCables(j, m);
   if (!m.structures.bolts.empty()) writeBolts(j, m);
+  if (m.boundaryElements.on) writeBoundaryElements(j, m);
 
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

@@ -57,6 +57,7 @@ BeamDefinition readBeam(TableReader& r);
 BeamNodeDefinition readBeamNode(TableReader& r);
 CableDefinition readCable(TableReader& r);
 BoltDefinition readBolt(TableReader& r);
+BoundaryElementsDefinition readBoundaryElements(TableReader& r);
 FlowBoundaryDefinition readFlowBoundary(TableReader& r);
 void readJointFlowKeys(TableReader& r, JointMaterial& joint);
 

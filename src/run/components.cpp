@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "boundary/boundary_conditions.hpp"
+#include "bem/far_field.hpp"
 #include "boundary/free_field.hpp"
 #include "boundary/viscous_boundary.hpp"
 #include "contact/deformable_outline.hpp"
@@ -67,6 +68,14 @@ Component boundaries(RunContext& run) {
     c.stages.push_back({"rigid-viscous-boundaries", [&run] { applyRigidViscousBoundaries(run.model); }});
   if (!m.drivenVelocities.empty())
     c.stages.push_back({"boundary-velocities", [&run] { applyDrivenVelocities(run.model, run.dt); }});
+  return c;
+}
+
+// The boundary-element far field (1.4.5): its forces on the interface's gridpoints from their
+// displacements, a force stage; its stiffness in their step.
+Component boundaryElements(RunContext& run) {
+  Component c{"boundary-elements", {}, [&run] { return boundaryElementTimeStep(run.model, run.settings.zoneFraction); }};
+  c.stages.push_back({"boundary-element-forces", [&run] { applyBoundaryElementForces(run.model); }});
   return c;
 }
 
@@ -192,6 +201,7 @@ std::vector<Component> sceneComponents(RunContext& run) {
   if (m.zones.size() > 0) components.push_back(deformableBlocks(run));
   if (m.zones.size() > 0 || !m.rigidViscousEdges.empty()) components.push_back(boundaries(run));
   if (!m.freeFields.empty()) components.push_back(freeField(run));
+  if (m.boundaryElements.on) components.push_back(boundaryElements(run));
   if (m.flow.on) components.push_back(fractureFlow(run));
   if (m.structures.any()) components.push_back(structures(run));
   return components;

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "bem/far_field.hpp"
 #include "boundary/boundary_conditions.hpp"
 #include "boundary/free_field.hpp"
 #include "boundary/initial_wave.hpp"
@@ -492,6 +493,15 @@ void Cycle::beginPhase(const PhaseChanges& changes, const std::string& phaseName
   for (const int cable : changes.installCables)
     energy_.withdraw(-installCable(model_, cable, "phase '" + phaseName + "'"));
   for (const int bolt : changes.installBolts) installBolt(model_, bolt, "phase '" + phaseName + "'");
+  if (changes.boundaryElements) {
+    // In place as the model stands after the phase's excavations and free: its nodes where they
+    // are, holding the zones' stress there; its stiffness may shorten the step.
+    model_.boundaryElements = *changes.boundaryElements;
+    holdPresentStress(model_);
+    buildStages();
+    undampedStep_ = std::min(undampedStep_, stepLimitOf("boundary-elements"));
+    dt_ = std::min(dt_, dampedStep(undampedStep_));
+  }
   if (!changes.installBeams.empty() || !changes.installCables.empty() || !changes.installBolts.empty()) {
     undampedStep_ = std::min(undampedStep_, stepLimitOf("structures"));
     dt_ = std::min(dt_, dampedStep(undampedStep_));

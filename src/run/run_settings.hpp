@@ -64,6 +64,7 @@ struct PhaseChanges {
   std::vector<BeamNodeChange> beamNodes;      // loads added and degrees of freedom held
   std::vector<int> freeCables, freeBolts;     // taken out at the phase's start (indices)
   std::vector<int> installCables, installBolts;  // then installed, stress-free where the rock is then
+  std::optional<BoundaryElementField> boundaryElements;  // then put in place, holding the zones' stress
 };
 
 struct Phase {

@@ -21,6 +21,9 @@ int jointMaterialNamed(const Model& model, const Origin& origin, std::string_vie
 // A boundary definition resolved to the gridpoints and edges of its block in `model` (its
 // history, if any, appended to model.timeFunctions).
 BoundaryCondition resolveBoundary(const BoundaryDefinition& definition, Model& model);
+// The boundary-element far field on the outer edges the definition selects (its stiffness
+// formed; bem/far_field.hpp's holdPresentStress puts it in place).
+BoundaryElementField boundaryElementField(const Model& model, const BoundaryElementsDefinition& definition);
 
 // A phase resolved against the model. `geometry` is the model as the phase will find it
 // (excavated by the phases before; made on the first excavation), on which its boundaries select

@@ -124,6 +124,10 @@ Phase buildPhase(const PhaseDefinition& d, Model& m, std::optional<Model>& geome
     c.installBeams.push_back(index);
   }
   for (const BeamNodeDefinition& b : d.beamNodes) c.beamNodes.push_back(beamNodeChange(m, b));
+  if (d.boundaryElements) {
+    const Model& selected = geometry ? *geometry : m;
+    c.boundaryElements = boundaryElementField(selected, *d.boundaryElements);
+  }
   for (const CableDefinition& b : d.cables) {
     if (active.count(b.name))
       b.origin.fail("name", "'" + b.name + "' names a support or boundary active when the phase starts: give the cable another");

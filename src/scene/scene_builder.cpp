@@ -6,6 +6,7 @@
 #include <numbers>
 #include <set>
 
+#include "bem/far_field.hpp"
 #include "boundary/boundary_conditions.hpp"
 #include "contact/contact_geometry.hpp"
 #include "contact/deformable_outline.hpp"
@@ -561,11 +562,16 @@ Scene buildScene(SceneDefinition s) {
   // Boundary conditions in force, by name ("" for unnamed ones), and whether they drive a velocity.
   std::vector<std::pair<std::string, bool>> inForce;
   for (const BoundaryCondition& b : m.boundaryConditions) inForce.emplace_back(b.name, b.velocityBits != 0);
+  bool farField = false;  // an earlier phase's
   for (const PhaseDefinition& d : s.phases) {
     for (const Phase& before : scene.settings.phases)
       if (before.name == d.name) d.origin.fail("name", "phase '" + d.name + "' is defined twice");
     scene.settings.phases.push_back(buildPhase(d, m, excavated, active));
     const PhaseChanges& changes = scene.settings.phases.back().changes;
+    if (changes.boundaryElements && (s.boundaryElements || farField))
+      d.boundaryElements->origin.failTable("puts a far field in place, and one is already there (the scene's "
+                                           "[boundary_elements] or an earlier phase's): a model has one");
+    farField = farField || changes.boundaryElements.has_value();
     for (const auto& [material, strength] : changes.blockStrengths) plastic[material] = 1;
     for (const std::string& name : changes.freeBoundaries)
       std::erase_if(inForce, [&name](const auto& b) { return b.first == name; });
@@ -575,6 +581,10 @@ Scene buildScene(SceneDefinition s) {
     checkPhaseSolver(d, excavated ? *excavated : m, s.settings, plastic, velocityDriven);
   }
   if (s.initialStress) applyInitialStress(m, *s.initialStress);
+  if (s.boundaryElements) {
+    m.boundaryElements = boundaryElementField(m, *s.boundaryElements);
+    holdPresentStress(m);
+  }
   for (const InitialWaveDefinition& d : s.initialWaves) m.initialWaves.push_back(initialWave(m, d));
   for (const JointAssignmentDefinition& d : s.jointAssignments) assignJoint(m, d);
   std::set<std::string> historyNames;

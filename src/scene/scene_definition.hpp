@@ -112,6 +112,17 @@ struct BoundaryDefinition {
   Origin origin;
 };
 
+// A [boundary_elements] table: the elastic region beyond the outer boundary the selection picks.
+struct BoundaryElementsDefinition {
+  double young = 0.0, poisson = 0.0;
+  bool halfPlane = false;
+  double surfaceY = 0.0;
+  std::string block;                 // "": every deformable block
+  CoordinateRange x, y, r, angle;    // on the initial positions, as a [[boundary]]'s
+  Vec2 centre;
+  Origin origin;
+};
+
 struct InitialStressDefinition {
   std::array<double, 4> stress{};  // sxx, syy, sxy, szz at the origin
   std::array<double, 4> gradientX{}, gradientY{};
@@ -279,6 +290,7 @@ struct PhaseDefinition {
   std::vector<BeamNodeDefinition> beamNodes;  // loads and holds on beams, from the phase's start
   std::vector<CableDefinition> cables;        // installed at the phase's start
   std::vector<BoltDefinition> bolts;          // installed at the phase's start
+  std::optional<BoundaryElementsDefinition> boundaryElements;  // put in place at the phase's start
   Origin origin;
 };
 
@@ -295,6 +307,7 @@ struct SceneDefinition {
   std::vector<ExcavationDefinition> excavations;
   std::vector<BoundaryDefinition> boundaries;
   std::optional<InitialStressDefinition> initialStress;
+  std::optional<BoundaryElementsDefinition> boundaryElements;
   std::vector<InitialWaveDefinition> initialWaves;
   std::optional<FluidDefinition> fluid;
   std::vector<FlowBoundaryDefinition> flowBoundaries;

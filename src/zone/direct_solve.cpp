@@ -7,6 +7,7 @@
 #include <sstream>
 #include <vector>
 
+#include "bem/far_field.hpp"
 #include "contact/contact_geometry.hpp"
 #include "contact/deformable_outline.hpp"
 #include "core/errors.hpp"
@@ -94,6 +95,7 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
   // Loads: gravity and boundary tractions, plus the forces of the zones' present stresses.
   m.clearStepForces();
   applyEdgeTractions(m);
+  if (m.boundaryElements.on) applyBoundaryElementForces(m);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(count);
   for (int i = 0; i < g.size(); ++i) {
     const Vec2 load = g.gravityMass[i] * m.gravity + g.tractionForce[i];
@@ -168,6 +170,20 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
       }
     }
   }
+  // The far field's stiffness on its nodes, each node's displacement the mean of its gridpoints'.
+  const BoundaryElementField& be = m.boundaryElements;
+  for (int i = 0; be.on && i < be.size(); ++i)
+    for (int j = 0; j < be.size(); ++j)
+      for (int p = be.firstGridpoint[i]; p < be.firstGridpoint[i + 1]; ++p)
+        for (int q = be.firstGridpoint[j]; q < be.firstGridpoint[j + 1]; ++q) {
+          const double share = 1.0 / ((be.firstGridpoint[i + 1] - be.firstGridpoint[i]) * (be.firstGridpoint[j + 1] - be.firstGridpoint[j]));
+          for (int r = 0; r < 2; ++r)
+            for (int t = 0; t < 2; ++t) {
+              const int row = unknown[2 * be.gridpoints[p] + r], col = unknown[2 * be.gridpoints[q] + t];
+              if (row >= 0 && col >= 0)
+                entries.emplace_back(row, col, share * be.stiffness[static_cast<std::size_t>(2 * i + r) * (2 * be.size()) + 2 * j + t]);
+            }
+        }
   Eigen::SparseMatrix<double> K(count, count);
   K.setFromTriplets(entries.begin(), entries.end());
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(K);

@@ -107,6 +107,14 @@ def test_derived_ratio_of_two_runs():
 
 
 @REQ
+def test_derived_difference_of_two_histories():
+    results = {"histories": {"far": {"t": [0.0, 1.0], "value": [0.0, -2.5]}, "near": {"t": [0.0, 1.0], "value": [0.0, -4.0]}}}
+    table = {"kind": "derived", "function": "difference",
+             "inputs": {"minuend": {"kind": "final", "history": "far"}, "subtrahend": {"kind": "final", "history": "near"}}}
+    assert extract(table, results, 0) == pytest.approx(1.5, rel=1e-15, abs=0)
+
+
+@REQ
 def test_field_peak_is_the_value_of_largest_magnitude():
     # syy over the zones: -4, -6, -7 -> -7; sxy: 0.5, 0, 1 -> 1.
     assert extract({"kind": "field_peak", "of": "zones", "quantity": "syy"}, RESULTS, 0) == -7.0

@@ -48,8 +48,14 @@ def ratio(*, numerator, denominator, scale=1.0):
     return scale * numerator / denominator
 
 
+def difference(*, minuend, subtrahend):
+    """minuend - subtrahend: e.g. the settlement of one surface point relative to another, the
+    quantity a half-plane defines in 2D where each alone is not."""
+    return minuend - subtrahend
+
+
 # Arithmetic a derived extract may use besides the analytic package's inversion formulas.
-BUILTINS = {"ratio": ratio}
+BUILTINS = {"ratio": ratio, "difference": difference}
 
 ZONE_QUANTITIES = ("sxx", "syy", "sxy", "szz", "srr", "stt", "srt", "plastic")
 GRIDPOINT_QUANTITIES = ("ux", "uy", "ur", "ut")

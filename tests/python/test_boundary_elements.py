@@ -1,0 +1,109 @@
+"""The boundary-element far field through a scene (docs/models/boundary-elements.md,
+docs/user-manual/scene-format.md#boundary_elements): its scene errors, the interface it picks, the
+stress it holds at installation, and the direct solve with it."""
+import math
+
+import pytest
+
+from scene_runs import ROOT, needs_vdec, restart, run
+
+KIRSCH = ROOT / "verification" / "problems" / "BE-KIRSCH" / "scene.toml"
+pytestmark = needs_vdec
+BASE = KIRSCH.read_text()
+
+BAD = [
+    ("no young", BASE.replace("[boundary_elements]\nyoung = 10e9\n", "[boundary_elements]\n"), "young", "is required"),
+    ("poisson out of range", BASE.replace("poisson = 0.25\nr = [3.0, 3.0]", "poisson = 0.5\nr = [3.0, 3.0]"), "poisson",
+     "must lie in (-1, 0.5)"),
+    ("surface without half-plane", BASE.replace("r = [3.0, 3.0]", "r = [3.0, 3.0]\nsurface_y = 0.0"), "surface_y",
+     "give half_plane = true"),
+    ("gravity", BASE.replace("gravity = [0.0, 0.0]", "gravity = [0.0, -9.81]"), "boundary_elements",
+     "needs gravity = [0, 0]"),
+    ("nothing selected", BASE.replace("r = [3.0, 3.0]", "r = [7.0, 7.0]"), "boundary_elements", "selects 0 outer edges"),
+    ("half the loop", BASE.replace("r = [3.0, 3.0]", 'r = [3.0, 3.0]\nblock = "north"'), "boundary_elements",
+     "do not close round the model"),
+    ("both rings", BASE.replace("young = 10e9\npoisson = 0.25\nr = [3.0, 3.0]", "young = 10e9\npoisson = 0.25\nr = [0.5, 3.5]"),
+     "boundary_elements", "do not form one loop"),
+    ("the hole", BASE.replace("young = 10e9\npoisson = 0.25\nr = [3.0, 3.0]", "young = 10e9\npoisson = 0.25\nr = [1.0, 1.0]"),
+     "boundary_elements", "runs clockwise"),
+    ("rigid block", BASE.replace("r = [3.0, 3.0]", 'r = [3.0, 3.0]\nblock = "nowhere"'), "block", "no block"),
+    ("unknown key", BASE.replace("r = [3.0, 3.0]", "r = [3.0, 3.0]\nthickness = 1.0"), "thickness", "unknown key"),
+]
+
+
+@pytest.mark.requirements("REQ-BEM-007")
+@pytest.mark.parametrize("what,text,key,phrase", BAD, ids=[b[0] for b in BAD])
+def test_bad_boundary_element_input_is_a_scene_error_naming_the_key(tmp_path, what, text, key, phrase):
+    assert text != BASE
+    done, _ = run(tmp_path, text)
+    assert done.returncode == 3, (what, done.stderr)
+    assert key in done.stderr and phrase in done.stderr, (what, done.stderr)
+
+
+@pytest.mark.requirements("REQ-BEM-005")
+def test_the_far_field_holds_the_in_situ_stress_of_an_unexcavated_state(tmp_path):
+    # The two half rings with the hole's face loaded by the in-situ stress itself: nothing is out of
+    # balance, so nothing moves; the interface's nodes carry sigma n over their edges.
+    loaded = BASE.replace("pressure = 0.0", "stress = [-10e3, 0.0, 0.0]")
+    loaded = loaded.replace("ratio = 1e-8\ncycles = 2000000", "cycles = 200")
+    done, results = run(tmp_path, loaded)
+    assert done.returncode == 0, done.stderr
+    be = results["boundary_elements"]
+    assert be["nodes"] == 32 and be["closed"] and not be["half_plane"]
+    interface = be["interface"]
+    assert max(map(abs, interface["displacement_x"] + interface["displacement_y"])) < 1e-12
+    # The nodes' forces add up to nothing (a self-balanced in-situ stress) and each is sigma n times its length.
+    assert abs(sum(interface["force_x"])) < 1e-6 and abs(sum(interface["force_y"])) < 1e-6
+    # At 0 degrees: the two edges either side (32 chords of r = 3), normals at +-pi/32.
+    chord = 2.0 * 3.0 * math.sin(math.pi / 32)
+    assert max(abs(f) for f in interface["force_x"]) == pytest.approx(10e3 * math.cos(math.pi / 32) * chord, rel=1e-9)
+    assert set(interface["gridpoints"]) == {1, 2}, "the joints' ends join a gridpoint of each half ring"
+
+
+PHASED = BASE.replace("[stop]\nratio = 1e-8\ncycles = 2000000\n", "").replace("[boundary_elements]", "[phase.boundary_elements]")
+PHASED = PHASED.replace("pressure = 0.0", "stress = [-10e3, 0.0, 0.0]").replace('block = "north"\nr = [1.0, 1.0]', 'name = "hole-n"\nblock = "north"\nr = [1.0, 1.0]').replace('block = "south"\nr = [1.0, 1.0]', 'name = "hole-s"\nblock = "south"\nr = [1.0, 1.0]')
+PHASED = PHASED.replace("[phase.boundary_elements]", """[[boundary]]
+name = "outer-n"
+block = "north"
+r = [3.0, 3.0]
+fix = ["x", "y"]
+[[boundary]]
+name = "outer-s"
+block = "south"
+r = [3.0, 3.0]
+fix = ["x", "y"]
+[[phase]]
+name = "in-situ"
+stop = { cycles = 50 }
+[[phase]]
+name = "excavated"
+free = ["outer-n", "outer-s", "hole-n", "hole-s"]
+stop = { ratio = 1e-8, cycles = 2000000 }
+[phase.boundary_elements]""")
+
+
+@pytest.mark.requirements("REQ-BEM-006")
+def test_a_phase_puts_the_far_field_in_place_and_a_restart_continues_it(tmp_path):
+    done, phased = run(tmp_path, PHASED, "--save", "in-situ", name="phased")
+    assert done.returncode == 0, done.stderr
+    assert [p["stop_reason"] for p in phased["phases"]] == ["cycles", "ratio"]
+    done, whole = run(tmp_path, BASE, name="whole")
+    assert done.returncode == 0, done.stderr
+    # The same equilibrium, reached from the in-situ state held by fixed rock, then by the region.
+    wall = [i for i, (x, y) in enumerate(zip(whole["gridpoints"]["x0"], whole["gridpoints"]["y0"])) if abs(math.hypot(x, y) - 1.0) < 1e-9]
+    for key in ("displacement_x", "displacement_y"):
+        a = [phased["gridpoints"][key][i] for i in wall]
+        b = [whole["gridpoints"][key][i] for i in wall]
+        scale = max(map(abs, b))
+        assert max(abs(p - q) for p, q in zip(a, b)) < 1e-5 * scale, key
+    resumed, again = restart(tmp_path, "phased", tmp_path / "phased-out" / "after-phase-1.vdecstate", "resumed")
+    assert resumed.returncode == 0, resumed.stderr
+    for key in ("gridpoints", "histories", "energy"):
+        assert again[key] == phased[key], key
+    for run_ in (again, phased):
+        run_["boundary_elements"].pop("build_seconds")  # a wall time: the restart forms K again
+    assert again["boundary_elements"] == phased["boundary_elements"]
+    twice = PHASED.replace(
+        '[[phase]]\nname = "in-situ"', '[boundary_elements]\nyoung = 10e9\npoisson = 0.25\nr = [3.0, 3.0]\n[[phase]]\nname = "in-situ"')
+    done, _ = run(tmp_path, twice, name="twice")
+    assert done.returncode == 3 and "one is already there" in done.stderr, done.stderr
