@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from scipy.integrate import cumulative_trapezoid
+from scipy.integrate import cumulative_trapezoid, quad
 
 from analytic import elastic as el
 
@@ -716,3 +716,227 @@ def test_crossed_cell_centre_mode_and_its_damped_critical_step():
     solver_step = zf * el.crossed_grid_zone_step(**kw) * el.crossed_grid_solver_step_factor(beta=2.4e-4, **kw)
     assert solver_step == pytest.approx(0.95 * el.crossed_cell_damped_critical_step(beta=2.4e-4, **kw),
                                         rel=1e-14, abs=0)
+
+
+# ---------------------------------------------------------------- elastic half-plane: Flamant and the strip load
+
+
+def central_gradient(field, x, y, h):
+    """(d/dx, d/dy) of each component of field(x, y) (a tuple of arrays) by central differences."""
+    fxp, fxm, fyp, fym = field(x + h, y), field(x - h, y), field(x, y + h), field(x, y - h)
+    return ([(p - m) / (2.0 * h) for p, m in zip(fxp, fxm)], [(p - m) / (2.0 * h) for p, m in zip(fyp, fym)])
+
+
+def equilibrium_residuals(field, x, y, h):
+    """d sxx/dx + d sxy/dy and d sxy/dx + d syy/dy of a stress field (sxx, syy, sxy)(x, y)."""
+    (dxx_dx, _, dxy_dx), (_, dyy_dy, dxy_dy) = central_gradient(field, x, y, h)
+    return dxx_dx + dxy_dy, dxy_dx + dyy_dy
+
+
+def quad_over_strip(integrand, b, singular_points, epsabs):
+    """int_{-b}^{b} integrand(xi) dxi, split at the integrand's singular points inside the strip so that
+    quad's Gauss-Kronrod nodes (interior only) never land on one; epsabs for the pieces that vanish."""
+    from scipy.integrate import quad
+    cuts = sorted({-b, b, *(p for p in singular_points if -b < p < b)})
+    return sum(quad(integrand, lo, hi, epsabs=epsabs, epsrel=1e-12, limit=200)[0] for lo, hi in zip(cuts[:-1], cuts[1:]))
+
+
+def surface_curvature_from_strains(field, x, *, E, nu, h):
+    """d^2 v / dx^2 on the surface y = 0 from compatibility: v_x = e_xy + omega and
+    d omega / dx = d e_xy / dx - d e_xx / dy (e_xy the tensor shear strain), so
+    v_xx = 2 d e_xy / dx - d e_xx / dy; the strains from the stresses by the plane-strain compliance,
+    d/dy one-sided into the solid (second order), d/dx central."""
+    def strains(xx, yy):
+        return plane_strain_strains(*field(xx, yy), E=E, nu=nu)
+    exx_0, exx_1, exx_2 = strains(x, 0.0)[0], strains(x, -h)[0], strains(x, -2.0 * h)[0]
+    dexx_dy = (3.0 * exx_0 - 4.0 * exx_1 + exx_2) / (2.0 * h)
+    dexy_dx = (strains(x + h, 0.0)[2] - strains(x - h, 0.0)[2]) / (4.0 * h)
+    return 2.0 * dexy_dx - dexx_dy
+
+
+@REQ
+def test_flamant_stress_known_values():
+    P = 1e6
+    # under the load at depth 1: sigma_rr = -2 P / pi along the vertical, so syy = -2 P / pi, sxx = sxy = 0
+    sxx, syy, sxy = el.flamant_stress(x=0.0, y=-1.0, P=P)
+    assert syy == pytest.approx(-2.0 * P / math.pi, rel=1e-15, abs=0)
+    assert sxx == 0.0 and sxy == 0.0
+    # at (1, -1): r = sqrt 2, theta = 45 deg, sigma_rr = -2 P cos45 / (pi sqrt 2) = -P / pi along
+    # n = (1, -1) / sqrt 2, so sxx = syy = -P / (2 pi) and sxy = n_x n_y sigma_rr = +P / (2 pi)
+    sxx, syy, sxy = el.flamant_stress(x=1.0, y=-1.0, P=P)
+    np.testing.assert_allclose([sxx, syy, sxy], np.array([-1.0, -1.0, 1.0]) * P / (2.0 * math.pi), rtol=1e-15)
+    # the mirror point (-1, -1): sxy changes sign, the normal stresses do not; a surface at y = 5 shifts all
+    sxx, syy, sxy = el.flamant_stress(x=-1.0, y=4.0, P=P, surface_y=5.0)
+    np.testing.assert_allclose([sxx, syy, sxy], np.array([-1.0, -1.0, -1.0]) * P / (2.0 * math.pi), rtol=1e-15)
+    # radial: the principal direction of compression points at the load, so sxy / sxx = -d / x, syy / sxx = d^2 / x^2
+    x, y = np.array([0.3, -2.0, 4.0]), np.array([-1.7, -0.4, -3.0])
+    sxx, syy, sxy = el.flamant_stress(x=x, y=y, P=P)
+    np.testing.assert_allclose(sxy * x, -sxx * (-y), rtol=1e-14)
+    np.testing.assert_allclose(syy * x * x, sxx * y * y, rtol=1e-14)
+
+
+@REQ
+def test_flamant_stress_equilibrium_and_compatibility_by_finite_differences():
+    P, h = 1e6, 1e-5
+    x, y = np.meshgrid(np.linspace(-3.0, 3.0, 13), np.linspace(-0.5, -3.0, 6))
+
+    def field(xx, yy):
+        return el.flamant_stress(x=xx, y=yy, P=P)
+
+    fx, fy = equilibrium_residuals(field, x, y, h)
+    scale = P / 0.5 ** 2  # |grad sigma| ~ P / r^2, r >= 0.5
+    assert np.max(np.abs(fx)) < 1e-5 * scale
+    assert np.max(np.abs(fy)) < 1e-5 * scale
+
+    # Beltrami-Michell without body force: sxx + syy is harmonic (five-point Laplacian)
+    def trace(xx, yy):
+        sxx, syy, _ = el.flamant_stress(x=xx, y=yy, P=P)
+        return sxx + syy
+    hl = 1e-3
+    lap = (trace(x + hl, y) + trace(x - hl, y) + trace(x, y + hl) + trace(x, y - hl) - 4.0 * trace(x, y)) / hl ** 2
+    assert np.max(np.abs(lap)) < 1e-4 * P / 0.5 ** 3
+
+
+@REQ
+def test_flamant_surface_is_traction_free_and_the_load_balances():
+    P = 2.5e6
+    x = np.array([-7.0, -1.0, -1e-3, 1e-3, 0.2, 30.0])
+    sxx, syy, sxy = el.flamant_stress(x=x, y=1.5, P=P, surface_y=1.5)
+    np.testing.assert_array_equal(syy, 0.0)
+    np.testing.assert_array_equal(sxy, 0.0)
+    # the vertical stress over a horizontal line at any depth carries the whole load, -P; the shear stress
+    # integrates to 0 (no horizontal load) and the first moment of syy to 0 (the load acts at x = 0)
+    for depth in (0.01, 1.0, 40.0):
+        total = quad(lambda s: el.flamant_stress(x=s, y=-depth, P=P)[1], -np.inf, np.inf, epsabs=0, epsrel=1e-12)[0]
+        assert total == pytest.approx(-P, rel=1e-10, abs=0)
+        shear = quad(lambda s: el.flamant_stress(x=s, y=-depth, P=P)[2], -np.inf, np.inf, epsabs=1e-9 * P)[0]
+        assert abs(shear) < 1e-8 * P
+
+
+@REQ
+def test_flamant_rejects_the_load_point_and_points_above_the_surface():
+    with pytest.raises(ValueError, match="above"):
+        el.flamant_stress(x=np.array([1.0, 1.0]), y=np.array([-1.0, 0.1]), P=1.0)
+    with pytest.raises(ValueError, match="singular"):
+        el.flamant_stress(x=0.0, y=2.0, P=1.0, surface_y=2.0)
+    with pytest.raises(ValueError):
+        el.flamant_relative_settlement(x1=0.0, x2=1.0, P=1.0, **ROCK)
+    with pytest.raises(ValueError):
+        el.flamant_relative_settlement(x1=1.0, x2=2.0, P=1.0, E=1e9, nu=0.5)
+
+
+@REQ
+def test_flamant_relative_settlement_known_values():
+    # ROCK: 2 (1 - nu^2) / (pi E) = 2 * 0.9375 / (pi 1e10) = 1.875e-10 / pi per N/m; x2 = e x1: ln = 1
+    P = 1e6
+    assert el.flamant_relative_settlement(x1=2.0, x2=2.0 * math.e, P=P, **ROCK) == \
+        pytest.approx(1.875e-4 / math.pi, rel=1e-14, abs=0)
+    # symmetric about the load, antisymmetric in (x1, x2), additive along the surface
+    assert el.flamant_relative_settlement(x1=-2.0, x2=2.0, P=P, **ROCK) == 0.0
+    a = el.flamant_relative_settlement(x1=0.5, x2=-3.0, P=P, **ROCK)
+    b = el.flamant_relative_settlement(x1=-3.0, x2=11.0, P=P, **ROCK)
+    assert el.flamant_relative_settlement(x1=-3.0, x2=0.5, P=P, **ROCK) == pytest.approx(-a, rel=1e-15, abs=0)
+    assert el.flamant_relative_settlement(x1=0.5, x2=11.0, P=P, **ROCK) == pytest.approx(a + b, rel=1e-14, abs=0)
+    # nu = 0: 2 P / (pi E) ln 10 over a decade, vectorised
+    out = el.flamant_relative_settlement(x1=np.array([1.0, 0.1]), x2=np.array([10.0, -1.0]), P=P, E=10e9, nu=0.0)
+    np.testing.assert_allclose(out, 2e-4 / math.pi * math.log(10.0), rtol=1e-14)
+
+
+@REQ
+def test_surface_settlements_satisfy_compatibility_with_the_stresses():
+    # d^2 v / dx^2 of the relative settlement (central differences in x2) against the curvature that the
+    # stresses' strains impose along the surface (surface_curvature_from_strains), for Flamant and the strip
+    E, nu, P, q, b = 10e9, 0.3, 1e6, 2e6, 1.5
+    hv, hs = 1e-4, 1e-6
+    x = np.array([-6.0, -2.2, -0.9, -0.2, 0.4, 1.1, 1.8, 5.0])
+    flamant_v = el.flamant_relative_settlement
+    v_xx = (flamant_v(x1=1.0, x2=x + hv, P=P, E=E, nu=nu) - 2.0 * flamant_v(x1=1.0, x2=x, P=P, E=E, nu=nu)
+            + flamant_v(x1=1.0, x2=x - hv, P=P, E=E, nu=nu)) / hv ** 2
+    expected = surface_curvature_from_strains(lambda xx, yy: el.flamant_stress(x=xx, y=yy, P=P), x, E=E, nu=nu, h=hs)
+    np.testing.assert_allclose(v_xx, expected, rtol=1e-5)
+    strip_v = el.strip_load_relative_settlement
+    v_xx = (strip_v(x1=0.0, x2=x + hv, q=q, b=b, E=E, nu=nu) - 2.0 * strip_v(x1=0.0, x2=x, q=q, b=b, E=E, nu=nu)
+            + strip_v(x1=0.0, x2=x - hv, q=q, b=b, E=E, nu=nu)) / hv ** 2
+    expected = surface_curvature_from_strains(lambda xx, yy: el.strip_load_stress(x=xx, y=yy, q=q, b=b),
+                                              x, E=E, nu=nu, h=hs)
+    np.testing.assert_allclose(v_xx, expected, rtol=1e-5)
+
+
+@REQ
+def test_strip_load_stress_known_values_and_surface_tractions():
+    q, b = 3e6, 2.0
+    # under the centre at depth b: theta_1 = -45, theta_2 = 45 deg, alpha = pi / 2, sin alpha = 1, cos 0 = 1:
+    # syy = -q (1/2 + 1/pi) = -0.8183 q, sxx = -q (1/2 - 1/pi) = -0.1817 q (the classic strip-footing values)
+    sxx, syy, sxy = el.strip_load_stress(x=0.0, y=-b, q=q, b=b)
+    assert syy == pytest.approx(-q * (0.5 + 1.0 / math.pi), rel=1e-14, abs=0)
+    assert sxx == pytest.approx(-q * (0.5 - 1.0 / math.pi), rel=1e-14, abs=0)
+    assert sxy == pytest.approx(0.0, abs=1e-15 * q)
+    # below the edge x = b at depth 2 b: theta_1 = 0, theta_2 = atan(1) = 45 deg = alpha:
+    # sxy = (q / pi) sin45 sin45 = q / (2 pi), syy = -(q / pi)(pi/4 + 1/2), sxx = -(q / pi)(pi/4 - 1/2)
+    sxx, syy, sxy = el.strip_load_stress(x=b, y=10.0 - 2.0 * b, q=q, b=b, surface_y=10.0)
+    np.testing.assert_allclose([sxx, syy, sxy], q / math.pi * np.array([-(math.pi / 4 - 0.5), -(math.pi / 4 + 0.5), 0.5]),
+                               rtol=1e-14)
+    # surface: -q normal and no shear under the strip, free outside, the mean -q/2 at the edges
+    x = np.array([-5.0, -b, -1.0, 0.0, 1.9, b, 2.1])
+    sxx, syy, sxy = el.strip_load_stress(x=x, y=0.0, q=q, b=b)
+    np.testing.assert_allclose(syy, [0.0, -q / 2, -q, -q, -q, -q / 2, 0.0], rtol=1e-15, atol=1e-9)
+    np.testing.assert_allclose(sxx, [0.0, -q / 2, -q, -q, -q, -q / 2, 0.0], rtol=1e-15, atol=1e-9)
+    np.testing.assert_allclose(sxy[[0, 2, 3, 4, 6]], 0.0, atol=1e-9)
+    with pytest.raises(ValueError):
+        el.strip_load_stress(x=0.0, y=-1.0, q=q, b=0.0)
+    with pytest.raises(ValueError):
+        el.strip_load_stress(x=0.0, y=0.5, q=q, b=b)
+
+
+@REQ
+def test_strip_load_stress_is_flamant_integrated_over_the_strip():
+    q, b = 3e6, 1.25
+    for x, y in ((0.0, -0.5), (0.7, -0.1), (-2.0, -1.0), (1.25, -0.3), (4.0, -6.0), (-0.3, -20.0)):
+        closed = el.strip_load_stress(x=x, y=y, q=q, b=b)
+        for k in range(3):
+            numeric = quad_over_strip(lambda xi: el.flamant_stress(x=x - xi, y=y, P=q)[k], b, [x],
+                                      epsabs=1e-13 * q)
+            assert closed[k] == pytest.approx(numeric, rel=1e-10, abs=1e-10 * q)
+    # and it is in equilibrium by itself (finite differences, away from the edges)
+    xs, ys = np.meshgrid(np.linspace(-4.0, 4.0, 9), np.linspace(-0.3, -3.0, 5))
+    fx, fy = equilibrium_residuals(lambda xx, yy: el.strip_load_stress(x=xx, y=yy, q=q, b=b), xs, ys, 1e-5)
+    assert np.max(np.abs(fx)) < 1e-5 * q / 0.3
+    assert np.max(np.abs(fy)) < 1e-5 * q / 0.3
+
+
+@REQ
+def test_strip_relative_settlement_is_flamant_integrated_over_the_strip():
+    q, b = 2e6, 1.5
+    # ROCK: v(b) - v(0) = 2 C q b ln 2, C = 1.875e-10 / pi: the edge stands above the centre
+    assert el.strip_load_relative_settlement(x1=0.0, x2=b, q=q, b=b, **ROCK) == \
+        pytest.approx(2.0 * 1.875e-10 / math.pi * q * b * math.log(2.0), rel=1e-14, abs=0)
+    # against quad over the strip of Flamant's relative settlement, load at xi: the kernel is
+    # flamant_relative_settlement(x1 - xi, x2 - xi) per unit load
+    pairs = ((0.0, 0.4), (0.3, b), (-b, 2.0), (-0.7, 3.5), (5.0, -9.0), (-1.0, 1.0))
+    for x1, x2 in pairs:
+        numeric = quad_over_strip(lambda xi: el.flamant_relative_settlement(x1=x1 - xi, x2=x2 - xi, P=q, **ROCK),
+                                  b, [x1, x2], epsabs=1e-17)
+        closed = el.strip_load_relative_settlement(x1=x1, x2=x2, q=q, b=b, **ROCK)
+        assert closed == pytest.approx(numeric, rel=1e-10, abs=1e-12 * 1.875e-10 * q * b)
+    with pytest.raises(ValueError):
+        el.strip_load_relative_settlement(x1=0.0, x2=1.0, q=q, b=-1.0, **ROCK)
+
+
+@REQ
+def test_strip_settlement_tends_to_flamant_far_from_the_strip():
+    # (x + b) ln(x + b) - (x - b) ln(x - b) = 2 b (ln x + 1) - b^3 / (3 x^2) + O(b^5 / x^4) (Taylor: the
+    # odd terms of g(x + b) - g(x - b), g = t ln t, g' = ln t + 1, g''' = -1 / t^2): between x1 and x2 the strip's
+    # settlement differs from Flamant's with P = 2 q b by -C q b^3 / 3 (1 / x2^2 - 1 / x1^2)
+    q, b = 2e6, 0.5
+    C = 2.0 * (1.0 - 0.25 ** 2) / (math.pi * 10e9)
+    for x1, x2 in ((50.0, 400.0), (-80.0, 30.0), (1e3, -1e4)):
+        strip = el.strip_load_relative_settlement(x1=x1, x2=x2, q=q, b=b, **ROCK)
+        point = el.flamant_relative_settlement(x1=x1, x2=x2, P=2.0 * q * b, **ROCK)
+        correction = -C * q * b ** 3 / 3.0 * (1.0 / x2 ** 2 - 1.0 / x1 ** 2)
+        assert strip - point == pytest.approx(correction, rel=1e-3, abs=0)
+    # the far field's stresses too: at distances >> b the strip acts as the line load 2 q b to O(b^2 / r^2)
+    x, y = np.array([0.0, 30.0, -60.0]), np.array([-100.0, -80.0, -40.0])
+    strip = el.strip_load_stress(x=x, y=y, q=q, b=b)
+    point = el.flamant_stress(x=x, y=y, P=2.0 * q * b)
+    for s, p in zip(strip, point):
+        np.testing.assert_allclose(s, p, rtol=0, atol=1e-3 * np.max(np.abs(point)))

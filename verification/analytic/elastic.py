@@ -331,6 +331,144 @@ def kirsch_excavation_displacement(*, x, y, a, S_x, S_y, E, nu):
     return ur * c - ut * s, ur * s + ut * c
 
 
+# ---------------------------------------------------------------- elastic half-plane: line and strip loads
+#
+# The half-plane is y <= surface_y, x horizontal, y up; d = surface_y - y >= 0 is the depth. Loads are
+# per unit length out of the plane (N/m for a line load, Pa for a pressure) and positive DOWNWARD, into
+# the solid. Stresses tension positive, sigma_xy for the y-up axes. In 2D the surface displacement of a
+# loaded half-plane grows like ln|x| and has no datum at infinity, so only differences between two surface
+# points are defined: v(x2) - v(x1), v = u_y positive up.
+
+
+def _half_plane_depth(y, surface_y):
+    d = surface_y - _arr(y)
+    if np.any(d < 0.0):
+        raise ValueError(f"y > surface_y = {surface_y}: the point lies above the half-plane's surface")
+    return d
+
+
+def _surface_settlement_constant(E, nu):
+    # 2 (1 - nu^2) / (pi E): the plane-strain factor of ln|x| in Flamant's surface displacement
+    E, nu = _check_young_poisson(E, nu)
+    return 2.0 * (1.0 - nu * nu) / (math.pi * E)
+
+
+def flamant_stress(*, x, y, P, surface_y=0.0):
+    """(sigma_xx, sigma_yy, sigma_xy) in the half-plane y <= surface_y under a vertical line load P (N/m,
+    downward positive) at x = 0 of the surface (Flamant 1892, C. R. Acad. Sci. Paris 114, 1465-1468;
+    Timoshenko & Goodier, Theory of Elasticity, 3rd ed., ch. 4, "concentrated vertical force on a straight
+    boundary"; Johnson, Contact Mechanics, eq. 2.15). The stress is purely radial,
+
+        sigma_rr = -2 P cos(theta) / (pi r),   sigma_tt = sigma_rt = 0,
+
+    theta measured from the downward vertical, r the distance from the load. With the depth
+    d = surface_y - y = r cos(theta) and the unit radius n = (x, -d) / r (y up), sigma = sigma_rr n n^T:
+
+        sigma_xx = -2 P x^2 d / (pi r^4),   sigma_yy = -2 P d^3 / (pi r^4),   sigma_xy = +2 P x d^2 / (pi r^4).
+
+    sigma_xy is minus Johnson's tau_xz because his z axis points down (e_y = -e_z). Checks: the surface
+    d = 0, x != 0 is traction free; the integral of sigma_yy over any horizontal line is -P
+    (int d^3 / (x^2 + d^2)^2 dx = pi / 2); equilibrium holds without body force. The load point (r = 0)
+    is singular and is a ValueError, as is a point above the surface.
+    """
+    x = _arr(x)
+    d = _half_plane_depth(y, surface_y)
+    x, d = np.broadcast_arrays(x, d)
+    r2 = x * x + d * d
+    if np.any(r2 == 0.0):
+        raise ValueError("a point sits on the line load, where Flamant's stresses are singular")
+    c = 2.0 * P / (math.pi * r2 * r2)
+    return -c * x * x * d, -c * d ** 3, c * x * d * d
+
+
+def flamant_relative_settlement(*, x1, x2, P, E, nu):
+    """v(x2) - v(x1): the difference of the surface's vertical displacement (up positive) between the
+    surface points at horizontal distances x1 and x2 from a vertical line load P (N/m, downward positive)
+    on a plane-strain elastic half-plane:
+
+        v(x2) - v(x1) = 2 (1 - nu^2) P / (pi E) ln(|x2| / |x1|).
+
+    From Johnson, Contact Mechanics, eq. 2.19b (plane strain), u_z = -(2 (1 - nu^2) / (pi E)) P ln|x| + C
+    with z into the solid, and v = -u_z; Timoshenko & Goodier, ch. 4, derive it in plane stress, where the
+    factor is 2 / (pi E): plane strain replaces E by E / (1 - nu^2). The point farther from the load is
+    higher. Check: along the traction-free surface the
+    strains vanish, so d^2 v / dx^2 = -d e_xx / dy there (compatibility: d omega / dx = d e_xy / dx - d e_xx / dy,
+    omega the rotation), and -d e_xx / dy = -(1 - nu^2) / E d sigma_xx / dy = -(1 - nu^2) 2 P / (pi E x^2)
+    from flamant_stress: exactly the second derivative of the ln above. x = 0 (the load) is a ValueError.
+    """
+    x1, x2 = np.abs(_arr(x1)), np.abs(_arr(x2))
+    if np.any(x1 == 0.0) or np.any(x2 == 0.0):
+        raise ValueError("x1 or x2 = 0: the surface displacement under a line load is singular at the load")
+    return _surface_settlement_constant(E, nu) * P * np.log(x2 / x1)
+
+
+def strip_load_stress(*, x, y, q, b, surface_y=0.0):
+    """(sigma_xx, sigma_yy, sigma_xy) in the half-plane y <= surface_y under a uniform vertical pressure q
+    (Pa, downward positive) on the surface strip |x| <= b. Derived here by integrating flamant_stress with
+    P = q dxi over the load positions xi in [-b, b]; with X = x - xi and the antiderivatives
+
+        int d^3 / (X^2 + d^2)^2 dX   = (atan(X/d) + X d / (X^2 + d^2)) / 2,
+        int X^2 d / (X^2 + d^2)^2 dX = (atan(X/d) - X d / (X^2 + d^2)) / 2,
+        int X d^2 / (X^2 + d^2)^2 dX = -d^2 / (2 (X^2 + d^2)),
+
+    and the angles theta_1 = atan2(x - b, d), theta_2 = atan2(x + b, d) (from the downward vertical to the
+    lines joining the point to the strip's edges), alpha = theta_2 - theta_1 (the angle the strip subtends):
+
+        sigma_xx = -(q / pi) (alpha - sin(alpha) cos(theta_1 + theta_2)),
+        sigma_yy = -(q / pi) (alpha + sin(alpha) cos(theta_1 + theta_2)),
+        sigma_xy = (q / pi) sin(alpha) sin(theta_1 + theta_2).
+
+    These are the classic strip-footing stresses (Poulos & Davis, Elastic Solutions for Soil and Rock
+    Mechanics, 1974, ch. 3, uniform vertical loading on a strip, compression positive there, with
+    delta = theta_1 and alpha + 2 delta = theta_1 + theta_2; Johnson, Contact Mechanics, ch. 2). Under the
+    centre at depth b: sigma_yy = -q (1/2 + 1/pi), sigma_xx = -q (1/2 - 1/pi). On the surface
+    sigma_xx = sigma_yy = -q, sigma_xy = 0 under the strip and zero outside; at the edges on the surface the
+    stress is discontinuous and the value returned (atan2(0, 0) = 0) is the mean of the two sides for
+    sigma_xx and sigma_yy. b <= 0 or a point above the surface is a ValueError.
+    """
+    if not b > 0.0:
+        raise ValueError(f"b = {b}: the strip's half-width must be positive")
+    x = _arr(x)
+    d = _half_plane_depth(y, surface_y)
+    x, d = np.broadcast_arrays(x, d)
+    theta_1, theta_2 = np.arctan2(x - b, d), np.arctan2(x + b, d)
+    alpha, twice_mid = theta_2 - theta_1, theta_1 + theta_2
+    k = q / math.pi
+    sin_alpha = np.sin(alpha)
+    return (-k * (alpha - sin_alpha * np.cos(twice_mid)), -k * (alpha + sin_alpha * np.cos(twice_mid)),
+            k * sin_alpha * np.sin(twice_mid))
+
+
+def _x_log_abs_x(x):
+    # x ln|x| with its limit 0 at x = 0 (the strip's edges)
+    ax = np.abs(x)
+    return np.where(ax > 0.0, x * np.log(np.where(ax > 0.0, ax, 1.0)), 0.0)
+
+
+def strip_load_relative_settlement(*, x1, x2, q, b, E, nu):
+    """v(x2) - v(x1): the difference of the surface's vertical displacement (up positive) between two
+    surface points under a uniform vertical pressure q (Pa, downward positive) on the strip |x| <= b of a
+    plane-strain elastic half-plane. Flamant's surface displacement, v = C P ln|x - xi| + const with
+    C = 2 (1 - nu^2) / (pi E) (flamant_relative_settlement), integrated with P = q dxi over xi in [-b, b]:
+    int ln|X| dX = X ln|X| - X, so
+
+        v(x) = C q ((x + b) ln|x + b| - (x - b) ln|x - b|) + const,
+
+    finite at the edges (0 ln 0 = 0; Johnson, Contact Mechanics, ch. 2, uniform pressure on a strip).
+    Under the centre v(b) - v(0) = 2 C q b ln 2 (the edge is higher); far from the strip
+    (x + b) ln(x + b) - (x - b) ln(x - b) = 2 b (ln x + 1) + O(b^3 / x^2), Flamant's with P = 2 q b.
+    b <= 0 is a ValueError.
+    """
+    if not b > 0.0:
+        raise ValueError(f"b = {b}: the strip's half-width must be positive")
+    x1, x2 = _arr(x1), _arr(x2)
+
+    def profile(x):
+        return _x_log_abs_x(x + b) - _x_log_abs_x(x - b)
+
+    return _surface_settlement_constant(E, nu) * q * (profile(x2) - profile(x1))
+
+
 # ---------------------------------------------------------------- waves in an elastic column
 
 
