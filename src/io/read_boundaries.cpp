@@ -230,7 +230,7 @@ BoundaryElementsDefinition readBoundaryElements(TableReader& t) {
   d.origin = t.origin();
   d.young = t.positive("young");
   d.poisson = t.number("poisson");
-  if (!(d.poisson > -1.0 && d.poisson < 0.5)) t.fail("poisson", "must lie in (-1, 0.5), got " + shown(d.poisson));
+  if (!(d.poisson >= 0.0 && d.poisson < 0.5)) t.fail("poisson", "must lie in [0, 0.5), got " + shown(d.poisson));
   d.halfPlane = t.boolean("half_plane", false);
   if (d.halfPlane) d.surfaceY = t.number("surface_y");
   else if (t.has("surface_y")) t.fail("surface_y", "is the free surface of a half-plane: give half_plane = true, or remove it");

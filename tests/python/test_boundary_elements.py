@@ -14,7 +14,9 @@ BASE = KIRSCH.read_text()
 BAD = [
     ("no young", BASE.replace("[boundary_elements]\nyoung = 10e9\n", "[boundary_elements]\n"), "young", "is required"),
     ("poisson out of range", BASE.replace("poisson = 0.25\nr = [3.0, 3.0]", "poisson = 0.5\nr = [3.0, 3.0]"), "poisson",
-     "must lie in (-1, 0.5)"),
+     "must lie in [0, 0.5)"),
+    ("negative poisson", BASE.replace("poisson = 0.25\nr = [3.0, 3.0]", "poisson = -0.1\nr = [3.0, 3.0]"), "poisson",
+     "must lie in [0, 0.5)"),
     ("surface without half-plane", BASE.replace("r = [3.0, 3.0]", "r = [3.0, 3.0]\nsurface_y = 0.0"), "surface_y",
      "give half_plane = true"),
     ("gravity", BASE.replace("gravity = [0.0, 0.0]", "gravity = [0.0, -9.81]"), "boundary_elements",
