@@ -44,7 +44,8 @@ Vec2 boundaryElementNodeDisplacement(const Model& m, int i) {
 void applyBoundaryElementForces(Model& m) {
   BoundaryElementField& be = m.boundaryElements;
   const int n = be.size();
-  std::vector<double> u(2 * static_cast<std::size_t>(n));
+  thread_local std::vector<double> u;  // kept between steps: the stage allocates nothing
+  u.resize(2 * static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     const Vec2 d = boundaryElementNodeDisplacement(m, i);
     u[2 * i] = d.x;

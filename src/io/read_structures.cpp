@@ -2,6 +2,8 @@
 // [[bolt_material]], [[bolt]]: rock support (docs/models/support.md).
 #include <cmath>
 #include <numbers>
+#include <tuple>
+#include <utility>
 
 #include "core/shown.hpp"
 #include "io/scene_sections.hpp"
@@ -82,6 +84,14 @@ BoltMaterialDefinition readBoltMaterial(TableReader& r) {
   return d;
 }
 
+// A straight support's two ends (`points`), distinct.
+std::pair<Vec2, Vec2> readSegment(TableReader& r, const std::string& what) {
+  const Polygon points = r.polygon("points");
+  if (points.size() != 2) r.fail("points", "a " + what + " is straight: give its two ends, [[x0, y0], [x1, y1]]");
+  if (points[0].x == points[1].x && points[0].y == points[1].y) r.fail("points", "the two ends are the same point");
+  return {points[0], points[1]};
+}
+
 }  // namespace
 
 BoltDefinition readBolt(TableReader& r) {
@@ -89,11 +99,7 @@ BoltDefinition readBolt(TableReader& r) {
   d.origin = r.origin();
   d.name = r.string("name");
   d.material = r.string("material");
-  const Polygon points = r.polygon("points");
-  if (points.size() != 2) r.fail("points", "a bolt is straight: give its two ends, [[x0, y0], [x1, y1]]");
-  if (points[0].x == points[1].x && points[0].y == points[1].y) r.fail("points", "the two ends are the same point");
-  d.from = points[0];
-  d.to = points[1];
+  std::tie(d.from, d.to) = readSegment(r, "bolt");
   r.finish();
   return d;
 }
@@ -103,11 +109,7 @@ CableDefinition readCable(TableReader& r) {
   d.origin = r.origin();
   d.name = r.string("name");
   d.material = r.string("material");
-  const Polygon points = r.polygon("points");
-  if (points.size() != 2) r.fail("points", "a cable is straight: give its two ends, [[x0, y0], [x1, y1]]");
-  if (points[0].x == points[1].x && points[0].y == points[1].y) r.fail("points", "the two ends are the same point");
-  d.from = points[0];
-  d.to = points[1];
+  std::tie(d.from, d.to) = readSegment(r, "cable");
   d.elements = static_cast<int>(r.integer("elements", 1, kMostElements));
   const double length = norm(d.to - d.from);
   d.freeLength = r.nonNegative("free_length", 0.0);

@@ -149,6 +149,29 @@ BoundaryCondition rigidViscousBoundary(const BoundaryDefinition& d, Model& m, in
 
 }  // namespace
 
+GridpointSelection selectGridpoints(const Model& m, const std::vector<char>& inBlocks, const CoordinateRange& x,
+                                    const CoordinateRange& y, const CoordinateRange& r, const CoordinateRange& angle,
+                                    Vec2 centre) {
+  GridpointSelection s;
+  // Slack: round-off of the generated coordinates, relative to the blocks' size.
+  double size = 1.0;
+  for (int b = 0; b < m.blocks.size(); ++b)
+    if (inBlocks[b]) size = std::max(size, 2.0 * m.blocks.boundingRadius[b]);
+  s.slack = 1e-9 * size;
+  s.selected.assign(m.gridpoints.size(), 0);
+  for (int i = 0; i < m.gridpoints.size(); ++i) {
+    if (!inBlocks[m.gridpoints.block[i]]) continue;
+    const Vec2 p = m.gridpoints.initialPosition[i];
+    const Vec2 d = p - centre;
+    if (x.holds(p.x, s.slack) && y.holds(p.y, s.slack) && r.holds(norm(d), s.slack) &&
+        angle.holds(polarAngleDegrees(d), 1e-7)) {
+      s.selected[i] = 1;
+      ++s.count;
+    }
+  }
+  return s;
+}
+
 BoundaryCondition resolveBoundary(const BoundaryDefinition& d, Model& m) {
   BoundaryCondition condition;
   condition.name = d.name;
@@ -167,24 +190,10 @@ BoundaryCondition resolveBoundary(const BoundaryDefinition& d, Model& m) {
     inBlocks[block] = 1;
   }
   const std::string which = d.block.empty() ? "any deformable block" : "block '" + d.block + "'";
-  // Selection slack: round-off of the generated coordinates, relative to the blocks' size.
-  double size = 1.0;
-  for (int b = 0; b < m.blocks.size(); ++b)
-    if (inBlocks[b]) size = std::max(size, 2.0 * m.blocks.boundingRadius[b]);
-  const double slack = 1e-9 * size;
-  std::vector<char> selected(m.gridpoints.size(), 0);
-  int count = 0;
-  for (int i = 0; i < m.gridpoints.size(); ++i) {
-    if (!inBlocks[m.gridpoints.block[i]]) continue;
-    const Vec2 p = m.gridpoints.initialPosition[i];
-    const Vec2 r = p - d.centre;
-    if (d.x.holds(p.x, slack) && d.y.holds(p.y, slack) && d.r.holds(norm(r), slack) &&
-        d.angle.holds(polarAngleDegrees(r), 1e-7)) {
-      selected[i] = 1;
-      ++count;
-    }
-  }
-  if (count == 0) d.origin.failTable("selects no gridpoint of " + which + ": check x, y, r, angle");
+  const GridpointSelection picked = selectGridpoints(m, inBlocks, d.x, d.y, d.r, d.angle, d.centre);
+  const std::vector<char>& selected = picked.selected;
+  const double slack = picked.slack;
+  if (picked.count == 0) d.origin.failTable("selects no gridpoint of " + which + ": check x, y, r, angle");
   // Edges of the blocks' outlines whose two ends are both selected.
   auto selectedEdges = [&] {
     std::vector<Model::BoundaryEdge> edges;

@@ -3,8 +3,6 @@
 // stiffness formed, and the stress the zones hold there at installation taken as its own.
 #include <chrono>
 #include <cmath>
-#include <map>
-#include <numbers>
 
 #include "bem/boundary_elements.hpp"
 #include "bem/far_field.hpp"
@@ -83,17 +81,10 @@ BoundaryElementField boundaryElementField(const Model& m, const BoundaryElements
       d.origin.fail("block", "block '" + d.block + "' is rigid: the far field couples to deformable blocks' gridpoints");
     inBlocks[block] = 1;
   }
-  double size = 1.0;
-  for (int b = 0; b < m.blocks.size(); ++b)
-    if (inBlocks[b]) size = std::max(size, 2.0 * m.blocks.boundingRadius[b]);
-  const double slack = 1e-9 * size;
+  const GridpointSelection picked = selectGridpoints(m, inBlocks, d.x, d.y, d.r, d.angle, d.centre);
+  const std::vector<char>& selected = picked.selected;
+  const double slack = picked.slack;
   const Gridpoints& g = m.gridpoints;
-  std::vector<char> selected(g.size(), 0);
-  for (int i = 0; i < g.size(); ++i) {
-    const Vec2 p = g.initialPosition[i], r = p - d.centre;
-    selected[i] = inBlocks[g.block[i]] && d.x.holds(p.x, slack) && d.y.holds(p.y, slack) && d.r.holds(norm(r), slack) &&
-                  d.angle.holds(std::atan2(r.y, r.x) * 180.0 / std::numbers::pi, 1e-7);
-  }
   // An edge another block's edge lies against (a joint) is inside the model, not on its outer boundary.
   auto jointed = [&](const Model::BoundaryEdge& e) {
     for (const Model::BoundaryEdge& other : m.boundaryEdges)

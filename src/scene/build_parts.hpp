@@ -21,6 +21,16 @@ int jointMaterialNamed(const Model& model, const Origin& origin, std::string_vie
 // A boundary definition resolved to the gridpoints and edges of its block in `model` (its
 // history, if any, appended to model.timeFunctions).
 BoundaryCondition resolveBoundary(const BoundaryDefinition& definition, Model& model);
+// The gridpoints of the flagged blocks whose initial positions lie in the ranges (r and angle
+// about `centre`), to a round-off slack of 1e-9 of the blocks' size, which it gives too.
+struct GridpointSelection {
+  std::vector<char> selected;
+  double slack = 0.0;
+  int count = 0;
+};
+GridpointSelection selectGridpoints(const Model& model, const std::vector<char>& inBlocks, const CoordinateRange& x,
+                                    const CoordinateRange& y, const CoordinateRange& r, const CoordinateRange& angle,
+                                    Vec2 centre);
 // The boundary-element far field on the outer edges the definition selects (its stiffness
 // formed; bem/far_field.hpp's holdPresentStress puts it in place).
 BoundaryElementField boundaryElementField(const Model& model, const BoundaryElementsDefinition& definition);

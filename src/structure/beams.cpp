@@ -181,24 +181,17 @@ double beamTimeStep(const Model& m, double frac, double zoneFraction) {
       rotation[i] += turning / ji + carried / std::sqrt(ji * jj) + std::numbers::sqrt2 * coupling * (1.0 / std::sqrt(ji * mi) + 1.0 / std::sqrt(ji * mj));
     }
   }
-  std::vector<double> blockStiffness(m.blocks.size(), 0.0), pointStiffness(m.gridpoints.size(), 0.0);
+  HostStiffness hosts(m);
   for (const BeamTie& t : st.ties) {
     const double k = t.normalStiffness + t.shearStiffness;
     translation[t.node] += k / nd.mass[t.node];
-    if (t.zone < 0) blockStiffness[t.block] += k;
-    else
-      for (int c = 0; c < 3; ++c) pointStiffness[m.zones.gridpoint[t.zone][c]] += t.weight[c] * k;
+    hosts.add(m, t, k);
   }
   double largest = 0.0;
   for (int i = 0; i < nd.size(); ++i) largest = std::max({largest, translation[i], rotation[i]});  // 0 where not installed
   // 0.9 of the bound, for what it leaves out: the ties' rock moving too, a chord turning fast.
-  double dt = largest > 0.0 ? 0.9 * 2.0 / std::sqrt(largest) : INFINITY;
-  for (int b = 0; b < m.blocks.size(); ++b)
-    if (blockStiffness[b] > 0.0 && m.blocks.movesFreely(b)) dt = std::min(dt, frac * 2.0 * std::sqrt(m.blocks.mass[b] / blockStiffness[b]));
-  for (int i = 0; i < m.gridpoints.size(); ++i)
-    if (pointStiffness[i] > 0.0)
-      dt = std::min(dt, zoneFraction * 2.0 * std::sqrt(m.gridpoints.mass[i] / (m.gridpoints.stiffness[i] + pointStiffness[i])));
-  return dt;
+  const double dt = largest > 0.0 ? 0.9 * 2.0 / std::sqrt(largest) : INFINITY;
+  return std::min(dt, hosts.timeStep(m, frac, zoneFraction));
 }
 
 void installBeam(Model& m, int index, const std::string& when) {

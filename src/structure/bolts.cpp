@@ -77,25 +77,15 @@ BoltStepTotals computeBoltForces(Model& m, double dt) {
 double boltTimeStep(const Model& m, double frac, double zoneFraction) {
   const Structures& st = m.structures;
   const BoltCrossings& x = st.crossings;
-  std::vector<double> blockStiffness(m.blocks.size(), 0.0), pointStiffness(m.gridpoints.size(), 0.0);
+  HostStiffness hosts(m);
   for (int i = 0; i < x.size(); ++i) {
     const Bolt& bolt = st.bolts[x.bolt[i]];
     if (!bolt.installed || x.broken[i]) continue;
     const BoltMaterial& mat = st.boltMaterials[bolt.material];
     const double k = mat.axialStiffness + mat.shearStiffness;  // both may push one way
-    for (const RockHold& h : x.side[i]) {
-      if (h.zone < 0) blockStiffness[h.block] += k;
-      else
-        for (int c = 0; c < 3; ++c) pointStiffness[m.zones.gridpoint[h.zone][c]] += h.weight[c] * k;
-    }
+    for (const RockHold& h : x.side[i]) hosts.add(m, h, k);
   }
-  double dt = INFINITY;
-  for (int b = 0; b < m.blocks.size(); ++b)
-    if (blockStiffness[b] > 0.0 && m.blocks.movesFreely(b)) dt = std::min(dt, frac * 2.0 * std::sqrt(m.blocks.mass[b] / blockStiffness[b]));
-  for (int i = 0; i < m.gridpoints.size(); ++i)
-    if (pointStiffness[i] > 0.0)
-      dt = std::min(dt, zoneFraction * 2.0 * std::sqrt(m.gridpoints.mass[i] / (m.gridpoints.stiffness[i] + pointStiffness[i])));
-  return dt;
+  return hosts.timeStep(m, frac, zoneFraction);
 }
 
 namespace {

@@ -108,7 +108,7 @@ double cableTimeStep(const Model& m, double frac, double zoneFraction) {
     row[a] += k / nd.mass[a] + across;
     row[b] += k / nd.mass[b] + across;
   }
-  std::vector<double> blockStiffness(m.blocks.size(), 0.0), pointStiffness(m.gridpoints.size(), 0.0);
+  HostStiffness hosts(m);
   for (int i = 0; i < nd.size(); ++i) {
     const Cable& cable = st.cables[nd.cable[i]];
     if (!cable.installed || nd.hold[i].block < 0) continue;
@@ -117,20 +117,12 @@ double cableTimeStep(const Model& m, double frac, double zoneFraction) {
     const double k = headPlate(cable, i, nd) ? mat.young * mat.area / st.cableElements.restLength[cable.firstElement]
                                              : mat.bondStiffness * nd.length[i];
     row[i] += k / nd.mass[i];
-    const CableNodes::Hold& h = nd.hold[i];
-    if (h.zone < 0) blockStiffness[h.block] += k;
-    else
-      for (int c = 0; c < 3; ++c) pointStiffness[m.zones.gridpoint[h.zone][c]] += h.weight[c] * k;
+    hosts.add(m, nd.hold[i], k);
   }
   double largest = 0.0;
   for (const double r : row) largest = std::max(largest, r);
-  double dt = largest > 0.0 ? 0.9 * 2.0 / std::sqrt(largest) : INFINITY;
-  for (int b = 0; b < m.blocks.size(); ++b)
-    if (blockStiffness[b] > 0.0 && m.blocks.movesFreely(b)) dt = std::min(dt, frac * 2.0 * std::sqrt(m.blocks.mass[b] / blockStiffness[b]));
-  for (int i = 0; i < m.gridpoints.size(); ++i)
-    if (pointStiffness[i] > 0.0)
-      dt = std::min(dt, zoneFraction * 2.0 * std::sqrt(m.gridpoints.mass[i] / (m.gridpoints.stiffness[i] + pointStiffness[i])));
-  return dt;
+  const double dt = largest > 0.0 ? 0.9 * 2.0 / std::sqrt(largest) : INFINITY;
+  return std::min(dt, hosts.timeStep(m, frac, zoneFraction));
 }
 
 double installCable(Model& m, int index, const std::string& when) {

@@ -2,8 +2,10 @@
 // A point of the rock that a support holds: fixed in a rigid block's frame, or at barycentric
 // weights in a zone. Where it is and how it moves now, and the load a support puts on it. `Held`
 // is any record with the fields block, local, zone and weight (a beam's tie, a cable node's grout).
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "core/model.hpp"
 #include "geometry/polygon.hpp"
@@ -47,6 +49,31 @@ void loadRock(Model& m, const Held& held, const RockPointNow& now, Vec2 force) {
   }
   for (int k = 0; k < 3; ++k) m.gridpoints.tractionForce[m.zones.gridpoint[held.zone][k]] += held.weight[k] * force;
 }
+
+// The stiffness supports add to the rock they hold, and the step that leaves that rock: a free
+// rigid block frac 2 sqrt(m / k) (1.3-28), a gridpoint zoneFraction 2 sqrt(m / (k_own + k)) (1.3-25).
+class HostStiffness {
+ public:
+  explicit HostStiffness(const Model& m) : block_(m.blocks.size(), 0.0), point_(m.gridpoints.size(), 0.0) {}
+  template <class Held>
+  void add(const Model& m, const Held& held, double k) {
+    if (held.zone < 0) block_[held.block] += k;
+    else
+      for (int c = 0; c < 3; ++c) point_[m.zones.gridpoint[held.zone][c]] += held.weight[c] * k;
+  }
+  double timeStep(const Model& m, double frac, double zoneFraction) const {
+    double dt = INFINITY;
+    for (int b = 0; b < m.blocks.size(); ++b)
+      if (block_[b] > 0.0 && m.blocks.movesFreely(b)) dt = std::min(dt, frac * 2.0 * std::sqrt(m.blocks.mass[b] / block_[b]));
+    for (int i = 0; i < m.gridpoints.size(); ++i)
+      if (point_[i] > 0.0)
+        dt = std::min(dt, zoneFraction * 2.0 * std::sqrt(m.gridpoints.mass[i] / (m.gridpoints.stiffness[i] + point_[i])));
+    return dt;
+  }
+
+ private:
+  std::vector<double> block_, point_;
+};
 
 namespace rock_point_detail {
 
