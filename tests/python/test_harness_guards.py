@@ -169,6 +169,9 @@ BAD_PROBLEMS = [
     ('[[check]]', '[[variant]]\nname = "a"\nframes = 3\n\n[[check]]', r"variant\[0\]\.frames", "unknown key"),
     ('[[check]]', '[[variant]]\nname = "a"\n[[variant]]\nname = "a"\n\n[[check]]', r"variant\[1\]\.name",
      "used by an earlier variant"),
+    ('[[check]]', '[[variant]]\nname = "a"\nscene = "large.toml"\n\n[[check]]', r"variant\[0\]\.scene", "no file"),
+    ('[[check]]', '[[variant]]\nname = "a"\nscene = 3\n\n[[check]]', r"variant\[0\]\.scene",
+     "file name relative to the problem folder"),
 ]
 
 

@@ -133,3 +133,15 @@ def test_the_analytic_module_of_a_derived_extract_is_recorded(tmp_path):
     assert "rocking" not in " ".join(c.reference.function_name for c in problem.checks)
     inputs = provenance.problem_inputs(problem, problem.runs)
     assert inputs["verification/analytic/rocking.py"] == provenance.sha256_of(ROOT / "verification/analytic/rocking.py")
+
+
+def test_every_scene_of_a_problem_and_its_tables_are_inputs():
+    problem = load_problem(PROBLEMS / "BE-JOINTED-TUNNEL/problem.toml")
+    scenes = {run.name: run.scene for run in problem.runs if run.scene}
+    assert scenes == {"large-stress": PROBLEMS / "BE-JOINTED-TUNNEL/large-stress.toml",
+                      "large-fixed": PROBLEMS / "BE-JOINTED-TUNNEL/large-fixed.toml"}
+    inputs = provenance.problem_inputs(problem, problem.runs)
+    folder = "verification/problems/BE-JOINTED-TUNNEL/"
+    assert {folder + name for name in ("problem.toml", "scene.toml", "large-stress.toml", "large-fixed.toml",
+                                       "unload.csv")} <= set(inputs)
+    assert inputs[folder + "large-fixed.toml"] == provenance.sha256_of(PROBLEMS / "BE-JOINTED-TUNNEL/large-fixed.toml")

@@ -22,6 +22,9 @@ Keys of problem.toml:
     expect_message = "..."        required with a nonzero expect_exit (and only then): text the run's stderr
                                   must hold, so that a stop counts only when it is for the expected reason
     expect_stop = "time"          default: the problem's expect_stop (with expect_exit 0)
+    scene = "large.toml"          optional: another scene file of the problem folder for this run (a
+                                  code-to-code comparison within vdec: the same problem modelled
+                                  another way); default the problem's scene
     restart_after = "phase"       optional: the run is made in two: vdec run --save PHASE into the run's
                                   saved/ folder, then vdec run --restart with that state file; the
                                   variant's results are the restarted run's (a check of kind
@@ -113,7 +116,7 @@ PROBLEM_KEYS = ("id", "title", "requirements", "scene", "level", "overrides", "e
                 "timeout_seconds", "variant", "refinement", "check", "mutation")
 # Tables planned for later work: named here so that using one says so rather than "unknown key".
 PLANNED_KEYS = {}
-VARIANT_KEYS = ("name", "overrides", "expect_exit", "expect_message", "expect_stop", "restart_after")
+VARIANT_KEYS = ("name", "scene", "overrides", "expect_exit", "expect_message", "expect_stop", "restart_after")
 CHECK_KEYS = ("quantity", "extract", "reference", "norm", "rtol", "atol", "justification", "tolerance_basis",
               "variant", "refinement")
 MUTATION_KEYS = ("name", "overrides", "why", "runs")
@@ -151,6 +154,7 @@ class Run:
     expect_message: str = ""
     expect_stop: str = ""     # run.stop_reason expected; "error" for a nonzero expect_exit
     restart_after: str = ""   # a phase: the run saves its state after it, then restarts from the file
+    scene: Path = None        # None: the problem's scene
 
     @property
     def label(self):
@@ -627,7 +631,15 @@ def load_problem(path):
         if not isinstance(restart_after, str) or ("restart_after" in v and not restart_after):
             errors.add(f"{where}.restart_after", "must be the name of a phase of the scene")
             restart_after = ""
-        variants.append(Run(name, overrides + extra, code, message, stop, restart_after))
+        scene_of_run = None
+        if "scene" in v:
+            if not _is_text(v["scene"]):
+                errors.add(f"{where}.scene", "must be a file name relative to the problem folder")
+            else:
+                scene_of_run = (path.parent / v["scene"]).resolve()
+                if not scene_of_run.is_file():
+                    errors.add(f"{where}.scene", f"no file {scene_of_run}")
+        variants.append(Run(name, overrides + extra, code, message, stop, restart_after, scene_of_run))
 
     refinement = None
     if "refinement" in data:
@@ -736,12 +748,13 @@ def _check_cycle_bounds(errors, scene, runs, checks):
     """A bound on run.cycles must lie strictly below the run's cycle limit: a run stopped by the
     limit has not converged, and a bound at the limit would pass it."""
     overrides = {run.name: run.overrides for run in runs}
+    scenes = {run.name: run.scene or scene for run in runs}
     for check in checks:
         if (check.extract or {}).get("kind") != "run_meta" or check.extract.get("path") != "run.cycles":
             continue
         if check.norm != "upper_bound" or check.reference is None or check.reference.constant is None:
             continue
-        limit = _cycle_limit(scene, overrides.get(check.variant, ()))
+        limit = _cycle_limit(scenes.get(check.variant, scene), overrides.get(check.variant, ()))
         allowed = check.reference.constant * (1.0 + check.rtol) + check.atol
         if limit is not None and not allowed < limit:
             errors.add(f"check[{check.index}].reference", f"the bound on run.cycles ({allowed:g}) is not below the "

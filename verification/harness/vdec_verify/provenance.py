@@ -198,7 +198,8 @@ def problem_inputs(problem, runs, package="analytic"):
     functions = [c.reference.function_name for c in problem.checks]
     functions += [name for c in problem.checks for name in _derived_functions(c.extract)]
     modules, programs = analytic_inputs(functions, package)
-    recorded = hashes([problem.path, problem.scene, *scene_files(problem.scene, overrides), *modules])
+    scenes = sorted({problem.scene, *(run.scene for run in runs if run.scene)})
+    recorded = hashes([problem.path, *scenes, *(f for scene in scenes for f in scene_files(scene, overrides)), *modules])
     for key, program in programs:
         recorded[key] = sha256_of(program) if program is not None else None
     return dict(sorted(recorded.items()))

@@ -168,7 +168,7 @@ def execute(problem, run, vdec, out, mutation=None):
     """One run of vdec; never raises: anything that goes wrong is in the outcome's failure.
     A run of a mutation goes in mutations/<ID>/<name>/[<run>]."""
     folder = run_folder(out, problem.id, run, mutation)
-    command = [str(vdec), "run", str(problem.scene), "--out", str(folder)]
+    command = [str(vdec), "run", str(run.scene or problem.scene), "--out", str(folder)]
     for override in run.overrides:
         command += ["--set", override]
     outcome = RunOutcome(run.name, command, folder, run.expect_exit)
