@@ -112,8 +112,9 @@ void visitState(A& a, Structures& s) {
 }
 template <class A>
 void visitState(A& a, BoundaryElementField& b) {
-  a(b.on), a(b.young), a(b.poisson), a(b.halfPlane), a(b.surfaceY), a(b.closed), a(b.node), a(b.firstGridpoint);
-  a(b.gridpoints), a(b.edge), a(b.stiffness), a(b.initialForce), a(b.force), a(b.buildSeconds);
+  a(b.on), a(b.young), a(b.poisson), a(b.halfPlane), a(b.surfaceY), a(b.closed), a(b.node), a(b.firstMember);
+  a(b.memberGridpoint), a(b.memberVertex), a(b.memberWeight), a(b.edge), a(b.edgeMember), a(b.inSitu), a(b.inSituGradientX), a(b.inSituGradientY);
+  a(b.stiffness), a(b.memberInitialForce), a(b.force), a(b.buildSeconds);
 }
 template <class A>
 void visitState(A& a, Model& m) {

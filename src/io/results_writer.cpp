@@ -222,12 +222,12 @@ void writeBoundaryElements(nlohmann::json& j, const Model& m) {
     uy.push_back(u.y);
     fx.push_back(be.force[i].x);
     fy.push_back(be.force[i].y);
-    joined.push_back(be.firstGridpoint[i + 1] - be.firstGridpoint[i]);
+    joined.push_back(be.firstMember[i + 1] - be.firstMember[i]);
   }
   j["boundary_elements"] = {{"nodes", be.size()}, {"half_plane", be.halfPlane}, {"closed", be.closed},
                             {"build_seconds", be.buildSeconds},
                             {"interface", {{"x0", x}, {"y0", y}, {"displacement_x", ux}, {"displacement_y", uy},
-                                           {"force_x", fx}, {"force_y", fy}, {"gridpoints", joined}}}};
+                                           {"force_x", fx}, {"force_y", fy}, {"points", joined}}}};
 }
 
 // Fluid in the joints: the domains (at their present centres), the knots (at their present

@@ -71,10 +71,10 @@ Component boundaries(RunContext& run) {
   return c;
 }
 
-// The boundary-element far field (1.4.5): its forces on the interface's gridpoints from their
-// displacements, a force stage; its stiffness in their step.
+// The boundary-element far field (1.4.5): its forces on the interface's points (gridpoints, rigid
+// blocks' vertices) from their displacements, a force stage; its stiffness in their step.
 Component boundaryElements(RunContext& run) {
-  Component c{"boundary-elements", {}, [&run] { return boundaryElementTimeStep(run.model, run.settings.zoneFraction); }};
+  Component c{"boundary-elements", {}, [&run] { return boundaryElementTimeStep(run.model, run.settings.frac, run.settings.zoneFraction); }};
   c.stages.push_back({"boundary-element-forces", [&run] { applyBoundaryElementForces(run.model); }});
   return c;
 }

@@ -169,6 +169,15 @@ GridpointSelection selectGridpoints(const Model& m, const std::vector<char>& inB
       ++s.count;
     }
   }
+  s.selectedVertex.assign(m.vertices.size(), 0);
+  for (int v = 0; v < m.vertices.size(); ++v) {
+    const int b = m.vertices.block[v];
+    if (!inBlocks[b] || m.blocks.deformable[b]) continue;
+    const Vec2 p = m.vertices.geometry[v].position;
+    const Vec2 d = p - centre;
+    s.selectedVertex[v] = x.holds(p.x, s.slack) && y.holds(p.y, s.slack) && r.holds(norm(d), s.slack) &&
+                          angle.holds(polarAngleDegrees(d), 1e-7);
+  }
   return s;
 }
 

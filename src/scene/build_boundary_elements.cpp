@@ -1,4 +1,4 @@
-// The boundary-element far field: the interface picked from the deformable blocks' outer edges,
+// The boundary-element far field: the interface picked from the blocks' outer edges (deformable or rigid),
 // ordered into a loop (or, for a half-plane, a chain between two points of the free surface), its
 // stiffness formed, and the stress the zones hold there at installation taken as its own.
 #include <chrono>
@@ -15,50 +15,82 @@ namespace {
 
 std::string at(Vec2 p) { return "(" + shown(p.x) + ", " + shown(p.y) + ")"; }
 
+// A point of a block's outline: a deformable block's gridpoint or a rigid block's vertex.
+struct OutlinePoint {
+  int gridpoint = -1, vertex = -1;
+  Vec2 position;  // at the start
+  bool operator==(const OutlinePoint& o) const { return gridpoint == o.gridpoint && vertex == o.vertex; }
+};
+
+// An edge of a block's outline, counter-clockwise about the block.
+struct Side {
+  int block = -1;
+  OutlinePoint from, to;
+};
+
+// The outline edges of the blocks taken whose two ends the selection holds.
+std::vector<Side> selectedSides(const Model& m, const BoundaryElementsDefinition& d, const std::vector<char>& inBlocks,
+                                double& slack) {
+  const GridpointSelection picked = selectGridpoints(m, inBlocks, d.x, d.y, d.r, d.angle, d.centre);
+  slack = picked.slack;
+  std::vector<Side> sides;
+  for (const Model::BoundaryEdge& e : m.boundaryEdges)
+    if (inBlocks[e.block] && picked.selected[e.from] && picked.selected[e.to])
+      sides.push_back({e.block, {e.from, -1, m.gridpoints.initialPosition[e.from]}, {e.to, -1, m.gridpoints.initialPosition[e.to]}});
+  for (int b = 0; b < m.blocks.size(); ++b) {
+    if (!inBlocks[b] || m.blocks.deformable[b]) continue;
+    const int first = m.blocks.firstVertex[b], count = m.blocks.vertexCount[b];
+    for (int k = 0; k < count; ++k) {
+      const int from = first + k, to = first + (k + 1) % count;
+      if (picked.selectedVertex[from] && picked.selectedVertex[to])
+        sides.push_back({b, {-1, from, m.vertices.geometry[from].position}, {-1, to, m.vertices.geometry[to].position}});
+    }
+  }
+  return sides;
+}
+
 // The selected outer edges, in order along the boundary: each edge's end meets the next's start
-// (coincident gridpoints of two blocks where the boundary crosses a joint).
-std::vector<Model::BoundaryEdge> orderedEdges(const Model& m, const BoundaryElementsDefinition& d,
-                                              std::vector<Model::BoundaryEdge> edges, double slack, bool& closed) {
-  const std::vector<Vec2>& p = m.gridpoints.initialPosition;
-  auto meets = [&](int to, int from) { return norm(p[to] - p[from]) <= slack; };
+// (coincident points of two blocks where the boundary crosses a joint).
+std::vector<Side> orderedSides(const BoundaryElementsDefinition& d, std::vector<Side> sides, double slack, bool& closed) {
+  auto meets = [&](const OutlinePoint& to, const OutlinePoint& from) { return norm(to.position - from.position) <= slack; };
   std::size_t first = 0;
   if (d.halfPlane) {
     // The chain starts at the edge no other edge leads into.
-    first = edges.size();
-    for (std::size_t e = 0; e < edges.size() && first == edges.size(); ++e) {
+    first = sides.size();
+    for (std::size_t e = 0; e < sides.size() && first == sides.size(); ++e) {
       bool entered = false;
-      for (const Model::BoundaryEdge& other : edges) entered = entered || meets(other.to, edges[e].from);
+      for (const Side& other : sides) entered = entered || meets(other.to, sides[e].from);
       if (!entered) first = e;
     }
-    if (first == edges.size())
+    if (first == sides.size())
       d.origin.failTable("selects a closed loop of edges; a half-plane's interface is a chain from the free surface "
                          "round the model and back to it: leave the surface's edges out of the selection");
   }
-  std::vector<Model::BoundaryEdge> chain{edges[first]};
-  edges.erase(edges.begin() + static_cast<long>(first));
-  while (!edges.empty()) {
-    const auto next = std::find_if(edges.begin(), edges.end(), [&](const Model::BoundaryEdge& e) { return meets(chain.back().to, e.from); });
-    if (next == edges.end()) break;
+  std::vector<Side> chain{sides[first]};
+  sides.erase(sides.begin() + static_cast<long>(first));
+  while (!sides.empty()) {
+    const auto next = std::find_if(sides.begin(), sides.end(), [&](const Side& e) { return meets(chain.back().to, e.from); });
+    if (next == sides.end()) break;
     chain.push_back(*next);
-    edges.erase(next);
+    sides.erase(next);
   }
   closed = meets(chain.back().to, chain.front().from);
-  if (!edges.empty())
+  if (!sides.empty())
     d.origin.failTable("selects edges that do not form one " + std::string(d.halfPlane ? "chain" : "loop") +
                        " along the outer boundary (" + std::to_string(chain.size()) + " of " +
-                       std::to_string(chain.size() + edges.size()) + " edges follow each other from " +
-                       at(p[chain.front().from]) + "): select the whole outer boundary and nothing inside it");
+                       std::to_string(chain.size() + sides.size()) + " edges follow each other from " +
+                       at(chain.front().from.position) + "): select the whole outer boundary and nothing inside it");
   if (!d.halfPlane && !closed)
-    d.origin.failTable("selects edges that do not close round the model (the chain runs from " + at(p[chain.front().from]) +
-                       " to " + at(p[chain.back().to]) + "): an infinite plane surrounds the model; select its whole outer "
+    d.origin.failTable("selects edges that do not close round the model (the chain runs from " + at(chain.front().from.position) +
+                       " to " + at(chain.back().to.position) + "): an infinite plane surrounds the model; select its whole outer "
                        "boundary, or give half_plane = true");
   double twiceArea = 0.0;
-  for (const Model::BoundaryEdge& e : chain) twiceArea += cross(p[e.from], p[e.to]);
+  for (const Side& e : chain) twiceArea += cross(e.from.position, e.to.position);
   if (!d.halfPlane && twiceArea < 0.0)
     d.origin.failTable("selects a loop that runs clockwise round what it encloses: the edge of a hole, not the "
                        "model's outer boundary; select the outer boundary");
   if (d.halfPlane) {
-    for (const Vec2 end : {p[chain.front().from], p[chain.back().to]})
+    for (const Vec2 end : {chain.front().from.position, chain.back().to.position})
       if (std::abs(end.y - d.surfaceY) > slack)
         d.origin.fail("surface_y", "the interface's chain ends at " + at(end) + ", not on the free surface y = " +
                                        shown(d.surfaceY) + ": the model's top must lie on the surface");
@@ -72,57 +104,65 @@ BoundaryElementField boundaryElementField(const Model& m, const BoundaryElements
   if (m.gravity.x != 0.0 || m.gravity.y != 0.0)
     d.origin.failTable("needs gravity = [0, 0]: the far field has no weight of its own to carry the blocks'; give the "
                        "stress of depth as [initial_stress]");
-  std::vector<char> inBlocks(m.blocks.size(), 0);
-  if (d.block.empty()) {
-    for (int b = 0; b < m.blocks.size(); ++b) inBlocks[b] = m.blocks.deformable[b];
-  } else {
-    const int block = blockNamed(m, d.origin, "block", d.block);
-    if (!m.blocks.deformable[block])
-      d.origin.fail("block", "block '" + d.block + "' is rigid: the far field couples to deformable blocks' gridpoints");
-    inBlocks[block] = 1;
+  std::vector<char> inBlocks(m.blocks.size(), 1);
+  if (!d.block.empty()) {
+    inBlocks.assign(m.blocks.size(), 0);
+    inBlocks[blockNamed(m, d.origin, "block", d.block)] = 1;
   }
-  const GridpointSelection picked = selectGridpoints(m, inBlocks, d.x, d.y, d.r, d.angle, d.centre);
-  const std::vector<char>& selected = picked.selected;
-  const double slack = picked.slack;
-  const Gridpoints& g = m.gridpoints;
+  double slack = 0.0;
+  const std::vector<Side> candidates = selectedSides(m, d, inBlocks, slack);
   // An edge another block's edge lies against (a joint) is inside the model, not on its outer boundary.
-  auto jointed = [&](const Model::BoundaryEdge& e) {
-    for (const Model::BoundaryEdge& other : m.boundaryEdges)
-      if (other.block != e.block && norm(g.initialPosition[other.from] - g.initialPosition[e.to]) <= slack &&
-          norm(g.initialPosition[other.to] - g.initialPosition[e.from]) <= slack)
+  auto jointed = [&](const Side& e) {
+    for (const Side& other : candidates)
+      if (other.block != e.block && norm(other.from.position - e.to.position) <= slack &&
+          norm(other.to.position - e.from.position) <= slack)
         return true;
     return false;
   };
   // Nor is an edge on a half-plane's free surface: the region has none there.
-  auto onSurface = [&](const Model::BoundaryEdge& e) {
-    return d.halfPlane && std::abs(g.initialPosition[e.from].y - d.surfaceY) <= slack &&
-           std::abs(g.initialPosition[e.to].y - d.surfaceY) <= slack;
+  auto onSurface = [&](const Side& e) {
+    return d.halfPlane && std::abs(e.from.position.y - d.surfaceY) <= slack && std::abs(e.to.position.y - d.surfaceY) <= slack;
   };
-  std::vector<Model::BoundaryEdge> edges;
-  for (const Model::BoundaryEdge& be : m.boundaryEdges)
-    if (inBlocks[be.block] && selected[be.from] && selected[be.to] && !jointed(be) && !onSurface(be)) edges.push_back(be);
-  if (edges.size() < 3)
-    d.origin.failTable("selects " + std::to_string(edges.size()) + " outer edges; the interface needs at least 3: check x, y, r, angle");
+  std::vector<Side> sides;
+  for (const Side& e : candidates)
+    if (!jointed(e) && !onSurface(e)) sides.push_back(e);
+  if (sides.size() < 3)
+    d.origin.failTable("selects " + std::to_string(sides.size()) + " outer edges; the interface needs at least 3: check x, y, r, angle");
   BoundaryElementField be;
-  const std::vector<Model::BoundaryEdge> chain = orderedEdges(m, d, edges, slack, be.closed);
+  const std::vector<Side> chain = orderedSides(d, sides, slack, be.closed);
   be.young = d.young;
   be.poisson = d.poisson;
   be.halfPlane = d.halfPlane;
   be.surfaceY = d.surfaceY;
   const std::size_t nodes = be.closed ? chain.size() : chain.size() + 1;
+  be.edgeMember.assign(chain.size(), {-1, -1});
+  auto length = [&](std::size_t e) { return norm(chain[e].to.position - chain[e].from.position); };
   for (std::size_t k = 0; k < nodes; ++k) {
-    be.firstGridpoint.push_back(static_cast<int>(be.gridpoints.size()));
-    std::vector<int> joined;
-    if (k < chain.size()) joined.push_back(chain[k].from);
-    const int before = k > 0 ? chain[k - 1].to : (be.closed ? chain.back().to : -1);
-    if (before >= 0 && std::find(joined.begin(), joined.end(), before) == joined.end()) joined.push_back(before);
-    Vec2 mean;
-    for (const int p : joined) mean += g.position[p];
-    be.node.push_back((1.0 / static_cast<double>(joined.size())) * mean);
-    be.gridpoints.insert(be.gridpoints.end(), joined.begin(), joined.end());
+    be.firstMember.push_back(static_cast<int>(be.memberGridpoint.size()));
+    // The edge leaving the node (edge k) and the one arriving (edge k - 1), where they exist.
+    const bool leaving = k < chain.size(), arriving = k > 0 || be.closed;
+    const std::size_t before = k > 0 ? k - 1 : chain.size() - 1;
+    auto add = [&](const OutlinePoint& p, double weight) {
+      be.memberGridpoint.push_back(p.gridpoint);
+      be.memberVertex.push_back(p.vertex);
+      be.memberWeight.push_back(weight);
+      return static_cast<int>(be.memberGridpoint.size()) - 1;
+    };
+    if (leaving && arriving && !(chain[k].from == chain[before].to)) {
+      const double out = length(k), in = length(before);
+      be.edgeMember[k][0] = add(chain[k].from, out / (out + in));
+      be.edgeMember[before][1] = add(chain[before].to, in / (out + in));
+      be.node.push_back((out * chain[k].from.position + in * chain[before].to.position) * (1.0 / (out + in)));
+      continue;
+    }
+    const OutlinePoint& p = leaving ? chain[k].from : chain[before].to;
+    const int member = add(p, 1.0);
+    if (leaving) be.edgeMember[k][0] = member;
+    if (arriving) be.edgeMember[before][1] = member;
+    be.node.push_back(p.position);
   }
-  be.firstGridpoint.push_back(static_cast<int>(be.gridpoints.size()));
-  for (const Model::BoundaryEdge& e : chain) be.edge.push_back({e.from, e.to});
+  be.firstMember.push_back(static_cast<int>(be.memberGridpoint.size()));
+  for (const Side& e : chain) be.edge.push_back({e.from.gridpoint, e.to.gridpoint});
   const auto started = std::chrono::steady_clock::now();
   ElasticRegion region;
   region.young = d.young;
@@ -138,6 +178,14 @@ BoundaryElementField boundaryElementField(const Model& m, const BoundaryElements
     for (Eigen::Index c = 0; c < K.cols(); ++c) be.stiffness[static_cast<std::size_t>(r * K.cols() + c)] = K(r, c);
   be.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return be;
+}
+
+void holdInSitu(BoundaryElementField& be, const InitialStressDefinition& d) {
+  for (int c = 0; c < 3; ++c) {
+    be.inSitu[c] = d.stress[c];
+    be.inSituGradientX[c] = d.gradientX[c];
+    be.inSituGradientY[c] = d.gradientY[c];
+  }
 }
 
 }  // namespace vdec

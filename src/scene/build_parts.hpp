@@ -21,10 +21,12 @@ int jointMaterialNamed(const Model& model, const Origin& origin, std::string_vie
 // A boundary definition resolved to the gridpoints and edges of its block in `model` (its
 // history, if any, appended to model.timeFunctions).
 BoundaryCondition resolveBoundary(const BoundaryDefinition& definition, Model& model);
-// The gridpoints of the flagged blocks whose initial positions lie in the ranges (r and angle
-// about `centre`), to a round-off slack of 1e-9 of the blocks' size, which it gives too.
+// The gridpoints of the flagged deformable blocks whose initial positions lie in the ranges (r and
+// angle about `centre`), and the vertices of the flagged rigid blocks whose positions when the
+// scene is built do, to a round-off slack of 1e-9 of the blocks' size, which it gives too.
 struct GridpointSelection {
   std::vector<char> selected;
+  std::vector<char> selectedVertex;
   double slack = 0.0;
   int count = 0;
 };
@@ -34,6 +36,8 @@ GridpointSelection selectGridpoints(const Model& model, const std::vector<char>&
 // The boundary-element far field on the outer edges the definition selects (its stiffness
 // formed; bem/far_field.hpp's holdPresentStress puts it in place).
 BoundaryElementField boundaryElementField(const Model& model, const BoundaryElementsDefinition& definition);
+// The in-situ stress a far field's rigid blocks' edges hold ([initial_stress]'s sxx, syy, sxy).
+void holdInSitu(BoundaryElementField& field, const InitialStressDefinition& definition);
 
 // A phase resolved against the model. `geometry` is the model as the phase will find it
 // (excavated by the phases before; made on the first excavation), on which its boundaries select

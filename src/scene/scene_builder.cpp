@@ -352,8 +352,10 @@ void checkPhaseSolver(const PhaseDefinition& d, const Model& m, const RunSetting
                                         "yield; relax the phase with explicit cycles instead");
 }
 
-void applyInitialStress(Model& m, const InitialStressDefinition& d) {
-  if (m.zones.size() == 0) d.origin.failTable("needs deformable blocks: it sets the stress of zones");
+void applyInitialStress(Model& m, const InitialStressDefinition& d, bool farField) {
+  if (m.zones.size() == 0 && !farField)
+    d.origin.failTable("needs deformable blocks (it sets the stress of zones) or a far field (whose edges on rigid "
+                       "blocks hold it)");
   const auto& s = d.stress;
   const auto &gx = d.gradientX, &gy = d.gradientY;
   for (int z = 0; z < m.zones.size(); ++z) {
@@ -580,11 +582,14 @@ Scene buildScene(SceneDefinition s) {
     for (const auto& [name, drives] : inForce) velocityDriven = velocityDriven || drives;
     checkPhaseSolver(d, excavated ? *excavated : m, s.settings, plastic, velocityDriven);
   }
-  if (s.initialStress) applyInitialStress(m, *s.initialStress);
+  if (s.initialStress) applyInitialStress(m, *s.initialStress, s.boundaryElements || farField);
   if (s.boundaryElements) {
     m.boundaryElements = boundaryElementField(m, *s.boundaryElements);
+    if (s.initialStress) holdInSitu(m.boundaryElements, *s.initialStress);
     holdPresentStress(m);
   }
+  for (Phase& phase : scene.settings.phases)
+    if (phase.changes.boundaryElements && s.initialStress) holdInSitu(*phase.changes.boundaryElements, *s.initialStress);
   for (const InitialWaveDefinition& d : s.initialWaves) m.initialWaves.push_back(initialWave(m, d));
   for (const JointAssignmentDefinition& d : s.jointAssignments) assignJoint(m, d);
   std::set<std::string> historyNames;

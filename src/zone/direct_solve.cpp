@@ -170,16 +170,17 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
       }
     }
   }
-  // The far field's stiffness on its nodes, each node's displacement the mean of its gridpoints'.
+  // The far field's stiffness on its nodes, each node's displacement the weighted mean of its
+  // gridpoints' (the solve refuses rigid blocks, so every point of the interface is a gridpoint).
   const BoundaryElementField& be = m.boundaryElements;
   for (int i = 0; be.on && i < be.size(); ++i)
     for (int j = 0; j < be.size(); ++j)
-      for (int p = be.firstGridpoint[i]; p < be.firstGridpoint[i + 1]; ++p)
-        for (int q = be.firstGridpoint[j]; q < be.firstGridpoint[j + 1]; ++q) {
-          const double share = 1.0 / ((be.firstGridpoint[i + 1] - be.firstGridpoint[i]) * (be.firstGridpoint[j + 1] - be.firstGridpoint[j]));
+      for (int p = be.firstMember[i]; p < be.firstMember[i + 1]; ++p)
+        for (int q = be.firstMember[j]; q < be.firstMember[j + 1]; ++q) {
+          const double share = be.memberWeight[p] * be.memberWeight[q];
           for (int r = 0; r < 2; ++r)
             for (int t = 0; t < 2; ++t) {
-              const int row = unknown[2 * be.gridpoints[p] + r], col = unknown[2 * be.gridpoints[q] + t];
+              const int row = unknown[2 * be.memberGridpoint[p] + r], col = unknown[2 * be.memberGridpoint[q] + t];
               if (row >= 0 && col >= 0)
                 entries.emplace_back(row, col, share * be.stiffness[static_cast<std::size_t>(2 * i + r) * (2 * be.size()) + 2 * j + t]);
             }

@@ -940,3 +940,38 @@ def test_strip_settlement_tends_to_flamant_far_from_the_strip():
     point = el.flamant_stress(x=x, y=y, P=2.0 * q * b)
     for s, p in zip(strip, point):
         np.testing.assert_allclose(s, p, rtol=0, atol=1e-3 * np.max(np.abs(point)))
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-BEM-009")
+def test_rigid_disc_rotation_at_known_values():
+    # G = 4 GPa: omega = 1e6 / (4 pi 4e9) for a = 1 m, a quarter of that at a = 2 m, any nu.
+    assert el.rigid_disc_rotation(M=1e6, E=10e9, nu=0.25, a=1.0) == pytest.approx(1.9894367886486918e-05, rel=1e-14, abs=0)
+    assert el.rigid_disc_rotation(M=1e6, E=10e9, nu=0.25, a=2.0) == pytest.approx(1.9894367886486918e-05 / 4, rel=1e-14, abs=0)
+    assert el.rigid_disc_rotation(M=-2e6, E=8e9, nu=0.0, a=1.0) == pytest.approx(-2e6 / (4 * math.pi * 4e9), rel=1e-14, abs=0)
+    with pytest.raises(ValueError):
+        el.rigid_disc_rotation(M=1.0, E=1e9, nu=0.25, a=0.0)
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-BEM-009")
+def test_rigid_disc_rotation_from_the_shear_stress_of_its_field():
+    # Independently: integrate the moment of tau_rt = G (du_t/dr - u_t/r) of u_t = omega a^2 / r,
+    # differentiated numerically, round the disc's edge.
+    E, nu, a, omega = 10e9, 0.3, 1.5, 1e-5
+    G = E / (2 * (1 + nu))
+    h = 1e-6
+    ut = lambda r: omega * a * a / r
+    tau = G * ((ut(a + h) - ut(a - h)) / (2 * h) - ut(a) / a)
+    moment = -tau * 2 * math.pi * a * a   # the plane's stress on the disc resists its turning
+    assert el.rigid_disc_rotation(M=moment, E=E, nu=nu, a=a) == pytest.approx(omega, rel=1e-8, abs=0)
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-BEM-009")
+def test_ring_hoop_force_balances_half_the_ring():
+    # The lumped pressure on the half polygon between two opposite vertices, summed edge by edge.
+    p, b, n = 3e5, 2.0, 16
+    pts = [(b * math.cos(2 * math.pi * k / n), b * math.sin(2 * math.pi * k / n)) for k in range(n // 2 + 1)]
+    # The pressure on an edge pushes against its outward normal (dy, -dx): (-p dy, p dx) on the upper half.
+    fx = sum(-p * (y1 - y0) for (x0, y0), (x1, y1) in zip(pts, pts[1:]))
+    fy = sum(p * (x1 - x0) for (x0, y0), (x1, y1) in zip(pts, pts[1:]))
+    assert abs(fx) < 1e-9 * p * b
+    assert -fy / 2 == pytest.approx(el.ring_hoop_force(p=p, b=b), rel=1e-12)

@@ -59,7 +59,7 @@ def test_the_far_field_holds_the_in_situ_stress_of_an_unexcavated_state(tmp_path
     # At 0 degrees: the two edges either side (32 chords of r = 3), normals at +-pi/32.
     chord = 2.0 * 3.0 * math.sin(math.pi / 32)
     assert max(abs(f) for f in interface["force_x"]) == pytest.approx(10e3 * math.cos(math.pi / 32) * chord, rel=1e-9)
-    assert set(interface["gridpoints"]) == {1, 2}, "the joints' ends join a gridpoint of each half ring"
+    assert set(interface["points"]) == {1, 2}, "the joints' ends join a gridpoint of each half ring"
 
 
 PHASED = BASE.replace("[stop]\nratio = 1e-8\ncycles = 2000000\n", "").replace("[boundary_elements]", "[phase.boundary_elements]")
@@ -109,3 +109,53 @@ def test_a_phase_puts_the_far_field_in_place_and_a_restart_continues_it(tmp_path
         '[[phase]]\nname = "in-situ"', '[boundary_elements]\nyoung = 10e9\npoisson = 0.25\nr = [3.0, 3.0]\n[[phase]]\nname = "in-situ"')
     done, _ = run(tmp_path, twice, name="twice")
     assert done.returncode == 3 and "one is already there" in done.stderr, done.stderr
+
+
+RING = (ROOT / "verification" / "problems" / "BE-RIGID-BLOCKS" / "ring.toml").read_text()
+
+
+@pytest.mark.requirements("REQ-BEM-009")
+def test_a_rigid_ring_restarts_bitwise_and_its_in_situ_stress_needs_the_far_field(tmp_path):
+    # The ring of rigid blocks held by the far field, relaxed in two phases: a restart after the
+    # first continues it bit for bit (the far field's points, weights and in-situ stress are saved).
+    phased = RING.replace("[stop]\ncycles = 40000\n", "").replace("[stop]\nratio = 1e-8\ncycles = 2000000\n", "")
+    phased += '[[phase]]\nname = "first"\nstop = { cycles = 500 }\n[[phase]]\nname = "rest"\nstop = { ratio = 1e-8, cycles = 200000 }\n'
+    done, whole = run(tmp_path, phased, "--save", "first", name="ring")
+    assert done.returncode == 0, done.stderr
+    assert set(whole["boundary_elements"]["interface"]["points"]) == {1, 2}, "a vertex of each of two blocks at a joint"
+    assert whole["histories"]["hoop_force"]["value"][-1] == pytest.approx(2e6, rel=3e-4, abs=0)
+    resumed, again = restart(tmp_path, "ring", tmp_path / "ring-out" / "after-phase-1.vdecstate", "resumed")
+    assert resumed.returncode == 0, resumed.stderr
+    for key in ("blocks", "contacts", "histories", "energy"):
+        assert again[key] == whole[key], key
+    for results in (again, whole):
+        results["boundary_elements"].pop("build_seconds")
+    assert again["boundary_elements"] == whole["boundary_elements"]
+    # Without the far field, rigid blocks have nothing to hold an in-situ stress.
+    alone = RING[:RING.index("[boundary_elements]")]
+    done, _ = run(tmp_path, alone, name="alone")
+    assert done.returncode == 3 and "[initial_stress]" in done.stderr and "or a far field" in done.stderr, done.stderr
+
+
+@pytest.mark.requirements("REQ-BEM-009")
+def test_rigid_and_deformable_blocks_share_one_interface(tmp_path):
+    # BE-KIRSCH's north half ring zoned, and in place of the south one two rigid convex quarters
+    # (the outer arc as 8 chords each, the inner one as a chord): the interface joins the north
+    # ring's gridpoints and the quarters' vertices, two points at each of its three joints.
+    quarters = ""
+    for name, start in (("south-west", math.pi), ("south-east", 1.5 * math.pi)):
+        arc = [(3.0 * math.cos(start + 0.5 * math.pi * k / 8), 3.0 * math.sin(start + 0.5 * math.pi * k / 8)) for k in range(9)]
+        inner = [(math.cos(start + 0.5 * math.pi), math.sin(start + 0.5 * math.pi)), (math.cos(start), math.sin(start))]
+        vertices = ", ".join(f"[{x:.15g}, {y:.15g}]" for x, y in arc + inner)
+        quarters += f'[[block]]\nname = "{name}"\nmaterial = "rock"\nvertices = [{vertices}]\nfix = ["x", "y", "rotation"]\n'
+    south = BASE.index('[[block]]\nname = "south"')
+    rigid = BASE[:south] + quarters + BASE[BASE.index("[initial_stress]"):]
+    rigid = rigid.replace('[[boundary]]\nblock = "south"\nr = [1.0, 1.0]\npressure = 0.0\n', "")
+    rigid = rigid.replace("ratio = 1e-8\ncycles = 2000000", "cycles = 10")
+    done, results = run(tmp_path, rigid)
+    assert done.returncode == 0, done.stderr
+    interface = results["boundary_elements"]["interface"]
+    assert results["boundary_elements"]["nodes"] == 32 and interface["points"].count(2) == 3
+    # The in-situ stress held on both kinds of edge: the nodes' forces balance (a uniform stress on
+    # a closed outline) before anything moves.
+    assert abs(sum(interface["force_x"])) < 1e-6 * 3e4 and abs(sum(interface["force_y"])) < 1e-6 * 3e4

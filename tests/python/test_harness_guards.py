@@ -175,7 +175,7 @@ BAD_PROBLEMS = [
 ]
 
 
-@pytest.mark.requirements("REQ-QA-002")
+@pytest.mark.requirements("REQ-QA-002", "REQ-QA-010")
 @pytest.mark.parametrize("old, new, key, phrase", BAD_PROBLEMS, ids=[f"{b[2]}: {b[3]}" for b in BAD_PROBLEMS])
 def test_problem_errors_name_the_file_and_the_key(tmp_path, old, new, key, phrase):
     path = write_problem(tmp_path, mutated(old, new))

@@ -135,6 +135,7 @@ def test_the_analytic_module_of_a_derived_extract_is_recorded(tmp_path):
     assert inputs["verification/analytic/rocking.py"] == provenance.sha256_of(ROOT / "verification/analytic/rocking.py")
 
 
+@pytest.mark.requirements("REQ-QA-010")
 def test_every_scene_of_a_problem_and_its_tables_are_inputs():
     problem = load_problem(PROBLEMS / "BE-JOINTED-TUNNEL/problem.toml")
     scenes = {run.name: run.scene for run in problem.runs if run.scene}

@@ -710,3 +710,29 @@ def crossed_cell_zone_fraction_at(*, E, nu, rho, side, beta, fraction):
     factor = crossed_grid_solver_step_factor(E=E, nu=nu, rho=rho, side=side, beta=beta)
     critical = crossed_cell_damped_critical_step(E=E, nu=nu, rho=rho, side=side, beta=beta, fraction=fraction)
     return critical / (dt_z * factor)
+
+
+def rigid_disc_rotation(*, M, E, nu, a):
+    """Rotation (radians, counter-clockwise) of a rigid circular disc of radius a bonded in an infinite
+    plane-strain elastic plane, under a moment M (N m/m, counter-clockwise). The plane's displacement is
+    purely circumferential, u_t = omega a^2 / r (it is harmonic and divergence-free, so it satisfies
+    Navier's equations for any nu), with shear stress tau_rt = G (du_t/dr - u_t/r) = -2 G omega a^2 / r^2:
+    the disc's edge carries 2 G omega all round it, whose moment is 2 pi a * a * 2 G omega, so
+
+        omega = M / (4 pi G a^2),   G = E / (2 (1 + nu)),
+
+    independent of nu (Muskhelishvili, Some Basic Problems of the Mathematical Theory of Elasticity,
+    section 56; Timoshenko & Goodier, ch. 4, "rotating disk" boundary problems)."""
+    if a <= 0.0 or E <= 0.0:
+        raise ValueError("a and E must be positive")
+    G = E / (2.0 * (1.0 + nu))
+    return M / (4.0 * math.pi * G * a * a)
+
+
+def ring_hoop_force(*, p, b):
+    """Force (N/m, compression positive for an external pressure p > 0) across any radial section of a
+    ring whose outer boundary, a circle or a polygon inscribed in one of radius b, carries a uniform
+    external pressure p and whose inner boundary is free: the pressure's resultant on one half,
+    p times the chord 2 b between the cut's two outer points, is balanced by the two sections,
+    each carrying p b (statics alone, for any material and any inner radius)."""
+    return p * b
