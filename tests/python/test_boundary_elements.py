@@ -2,6 +2,7 @@
 docs/user-manual/scene-format.md#boundary_elements): its scene errors, the interface it picks, the
 stress it holds at installation, and the direct solve with it."""
 import math
+from pathlib import Path
 
 import pytest
 
@@ -159,3 +160,25 @@ def test_rigid_and_deformable_blocks_share_one_interface(tmp_path):
     # The in-situ stress held on both kinds of edge: the nodes' forces balance (a uniform stress on
     # a closed outline) before anything moves.
     assert abs(sum(interface["force_x"])) < 1e-6 * 3e4 and abs(sum(interface["force_y"])) < 1e-6 * 3e4
+
+
+@pytest.mark.requirements("REQ-BEM-006")
+def test_an_excavation_inside_the_far_field_after_it_is_in_place(tmp_path):
+    # A zoned square in the far field, at the in-situ stress the region holds; a phase then digs a
+    # square opening in its middle. Elastic and at rest when the phase starts, it must end where
+    # the same square excavated before the run ends: the region does not care when the rock inside
+    # it was dug.
+    phased = (Path(__file__).parent / "fixtures" / "far_field_excavated_in_a_phase.toml").read_text()
+    opening = "polygon = [[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]\n"
+    whole = phased[:phased.index("[[phase]]")].replace("[boundary_elements]", "[[excavation]]\n" + opening + "[boundary_elements]")
+    whole += "[stop]\nratio = 1e-9\ncycles = 2000000\n"
+    done, later = run(tmp_path, phased, name="phased")
+    assert done.returncode == 0, done.stderr
+    assert [p["stop_reason"] for p in later["phases"]] == ["cycles", "ratio"]
+    done, first = run(tmp_path, whole, name="whole")
+    assert done.returncode == 0, done.stderr
+    assert len(later["zones"]["x0"]) == len(first["zones"]["x0"]) == 256 - 16
+    moved = {(x, y): (u, v) for x, y, u, v in zip(*(later["gridpoints"][k] for k in ("x0", "y0", "displacement_x", "displacement_y")))}
+    for x, y, u, v in zip(*(first["gridpoints"][k] for k in ("x0", "y0", "displacement_x", "displacement_y"))):
+        assert moved[(x, y)] == (u, v)
+    assert later["histories"]["crown_uy"]["value"][-1] < -1e-7, "the opening's roof comes down"
