@@ -12,6 +12,7 @@
 #include "boundary/time_function.hpp"
 #include "flow/flow_state.hpp"
 #include "structure/structure_state.hpp"
+#include "thermal/heat_state.hpp"
 #include "zone/mohr_coulomb.hpp"
 #include "core/vec2.hpp"
 
@@ -28,6 +29,11 @@ struct BlockMaterial {
   // Mohr-Coulomb plasticity of the intact rock (1.4.6), when given.
   bool plastic = false;
   MohrCoulombProperties mohrCoulomb;
+  // Heat conduction (1.4.3): conductivities along the material's axis at conductivityAngle
+  // (radians, counter-clockwise from x) and across it, W/(m K); specific heat J/(kg K). Zero when
+  // not given.
+  double conductivityX = 0.0, conductivityY = 0.0, conductivityAngle = 0.0;
+  double specificHeat = 0.0;
 };
 
 // NUREG/CR-5429 1.4.7: model #1 (point contact, forces), #2 (Coulomb slip), #5 (Coulomb slip
@@ -358,6 +364,7 @@ struct Model {
   FlowState flow;  // fluid in the joints, when the scene has a [fluid] table
   Structures structures;  // beams and their ties to the rock
   BoundaryElementField boundaryElements;  // the far field beyond the outer boundary, when the scene has one
+  HeatField heat;  // conduction in the zones, when the scene has a [heat] table
   // The outline edges of deformable blocks (outer boundaries and holes), each directed with the
   // block on its left: gridpoints from -> to.
   struct BoundaryEdge {

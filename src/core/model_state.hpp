@@ -117,11 +117,18 @@ void visitState(A& a, BoundaryElementField& b) {
   a(b.stiffness), a(b.memberInitialForce), a(b.force), a(b.buildSeconds);
 }
 template <class A>
+void visitState(A& a, HeatField& h) {
+  a(h.on), a(h.theta), a(h.step), a(h.stableStep), a(h.time), a(h.steps), a(h.factorisations), a(h.nodeOfGridpoint);
+  a(h.temperature), a(h.capacity), a(h.fixed), a(h.rowStart), a(h.column), a(h.conductance), a(h.decays);
+  a(h.loadNode), a(h.loadDecay), a(h.loadPower), a(h.loadBoundary), a(h.convectionNode), a(h.convectionConductance);
+  a(h.convectionAmbient), a(h.stored), a(h.sources), a(h.boundary), a(h.fixedInflow);
+}
+template <class A>
 void visitState(A& a, Model& m) {
   a(m.blockMaterials), a(m.jointMaterials), a(m.blocks), a(m.vertices), a(m.gridpoints), a(m.zones);
   a(m.gridpointZones.start), a(m.gridpointZones.slot), a(m.loadedEdges), a(m.drivenVelocities);
   a(m.boundaryConditions), a(m.viscousEdges), a(m.rigidViscousEdges), a(m.freeFields), a(m.initialWaves);
-  a(m.timeFunctions), a(m.flow), a(m.structures), a(m.boundaryElements), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
+  a(m.timeFunctions), a(m.flow), a(m.structures), a(m.boundaryElements), a(m.heat), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
   a(m.defaultJoint), a(m.gravity), a(m.roundingLength), a(m.contactTolerance), a(m.time), a(m.cycle);
 }
 

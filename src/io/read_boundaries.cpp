@@ -20,13 +20,6 @@ std::array<double, 4> quadruple(TableReader& r, std::string_view key) {
   return {v[0], v[1], v[2], v[3]};
 }
 
-CoordinateRange readRange(TableReader& r, std::string_view key) {
-  if (!r.has(key)) return {};
-  const Vec2 v = r.vec2(key);
-  if (v.y < v.x) r.fail(key, "must be [low, high] with low <= high");
-  return {v.x, v.y};
-}
-
 // The fields of one line of a CSV table (commas or spaces between them).
 std::vector<std::string_view> csvFields(std::string_view line) {
   std::vector<std::string_view> fields;
@@ -116,6 +109,14 @@ StressTable readStressTable(TableReader& r) {
 
 }  // namespace
 
+CoordinateRange readRange(TableReader& r, std::string_view key) {
+  if (!r.has(key)) return {};
+  const Vec2 v = r.vec2(key);
+  if (v.y < v.x) r.fail(key, "must be [low, high] with low <= high");
+  return {v.x, v.y};
+}
+
+
 TimeFunction readTimeFunction(TableReader& r, std::string_view key) {
   auto t = r.subtable(key);
   if (!t) r.fail(key, "must be a table, e.g. " + std::string(key) + " = { kind = \"sine\", frequency = 10.0 }");
@@ -151,12 +152,7 @@ BoundaryDefinition readBoundary(TableReader& r) {
   d.name = r.string("name", "");
   d.freeField = r.boolean("free_field", false);
   d.block = d.freeField ? r.string("block", "") : r.string("block");
-  // Which gridpoints: the ranges on their initial position, all optional.
-  d.x = readRange(r, "x");
-  d.y = readRange(r, "y");
-  d.r = readRange(r, "r");
-  d.angle = readRange(r, "angle");
-  d.centre = r.vec2("centre", {0.0, 0.0});
+  readSelection(r, d);
   if (!r.has("r") && !r.has("angle") && !r.has("stress_table") && r.has("centre"))
     r.fail("centre", "is used only with r, angle or stress_table");
   const bool viscous = r.boolean("viscous", false);
@@ -235,11 +231,7 @@ BoundaryElementsDefinition readBoundaryElements(TableReader& t) {
   if (d.halfPlane) d.surfaceY = t.number("surface_y");
   else if (t.has("surface_y")) t.fail("surface_y", "is the free surface of a half-plane: give half_plane = true, or remove it");
   d.block = t.string("block", "");
-  d.x = readRange(t, "x");
-  d.y = readRange(t, "y");
-  d.r = readRange(t, "r");
-  d.angle = readRange(t, "angle");
-  d.centre = t.vec2("centre", {0.0, 0.0});
+  readSelection(t, d);
   t.finish();
   return d;
 }

@@ -138,6 +138,7 @@ void readMaterials(TableReader& top, SceneDefinition& scene) {
       mat.plastic = true;
       mat.mohrCoulomb = *mc;
     }
+    readThermalKeys(r, mat);
     r.finish();
     scene.blockMaterials.push_back(std::move(d));
   }

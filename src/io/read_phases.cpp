@@ -116,6 +116,7 @@ PhaseDefinition readPhase(TableReader& r, std::vector<std::string>& warnings) {
     d.cables.push_back(readCable(t));
   }
   if (auto t = r.subtable("boundary_elements")) d.boundaryElements = readBoundaryElements(*t);
+  if (r.has("heat_time")) d.heatTime = r.nonNegative("heat_time", 0.0);
   for (auto [table, prefix] : r.tables("bolt")) {
     TableReader t(*table, prefix, r.file());
     d.bolts.push_back(readBolt(t));

@@ -64,6 +64,11 @@ void writeContinuum(nlohmann::json& j, const Model& m) {
   }
   j["gridpoints"] = {{"block", gBlock}, {"x0", x0}, {"y0", y0}, {"displacement_x", ux}, {"displacement_y", uy},
                      {"velocity_x", vx}, {"velocity_y", vy}};
+  if (m.heat.on) {
+    std::vector<double> temperature;
+    for (int i = 0; i < g.size(); ++i) temperature.push_back(m.heat.temperature[m.heat.nodeOfGridpoint[i]]);
+    j["gridpoints"]["temperature"] = temperature;
+  }
   const Zones& zn = m.zones;
   std::vector<double> cx0, cy0, area;
   std::vector<int> zBlock;
@@ -228,6 +233,17 @@ void writeBoundaryElements(nlohmann::json& j, const Model& m) {
                             {"build_seconds", be.buildSeconds},
                             {"interface", {{"x0", x}, {"y0", y}, {"displacement_x", ux}, {"displacement_y", uy},
                                            {"force_x", fx}, {"force_y", fy}, {"points", joined}}}};
+}
+
+// Heat conduction: the thermal clock and steps, and the heat balance since the start.
+void writeHeat(nlohmann::json& j, const Model& m) {
+  const HeatField& h = m.heat;
+  int fixed = 0;
+  for (const char f : h.fixed) fixed += f;
+  j["heat"] = {{"time", h.time}, {"steps", h.steps}, {"step", h.step}, {"theta", h.theta}, {"nodes", h.size()}, {"fixed_nodes", fixed}, {"factorisations", h.factorisations},
+               {"balance", {{"stored", h.stored}, {"sources", h.sources}, {"boundary", h.boundary},
+                            {"fixed", h.fixedInflow}, {"imbalance", h.stored - h.sources - h.boundary - h.fixedInflow}}}};
+  if (std::isfinite(h.stableStep)) j["heat"]["stable_step"] = h.stableStep;  // absent when every node is held
 }
 
 // Fluid in the joints: the domains (at their present centres), the knots (at their present
@@ -432,6 +448,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
   if (!m.structures.cables.empty()) writeCables(j, m);
   if (!m.structures.bolts.empty()) writeBolts(j, m);
   if (m.boundaryElements.on) writeBoundaryElements(j, m);
+  if (m.heat.on) writeHeat(j, m);
 
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

@@ -95,6 +95,7 @@ SceneDefinition parseScene(const toml::table& root, const std::string& path) {
   readBlocks(top, scene);
   readBoundaries(top, scene);
   readFluid(top, scene);
+  readHeat(top, scene);
   readStructures(top, scene);
   readPhases(top, scene);
   readHistories(top, scene);

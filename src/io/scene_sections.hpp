@@ -41,6 +41,18 @@ ExcavationDefinition readExcavation(TableReader& r);
 // [[boundary]] and [initial_stress].
 void readBoundaries(TableReader& top, SceneDefinition& scene);
 BoundaryDefinition readBoundary(TableReader& r);
+// A selection range [low, high] under `key`; absent: everything.
+CoordinateRange readRange(TableReader& r, std::string_view key);
+// The ranges x, y, r, angle and the point centre of a table that selects gridpoints by their
+// initial positions ([[boundary]], [boundary_elements], [[heat_boundary]]).
+template <class Selection>
+void readSelection(TableReader& r, Selection& d) {
+  d.x = readRange(r, "x");
+  d.y = readRange(r, "y");
+  d.r = readRange(r, "r");
+  d.angle = readRange(r, "angle");
+  d.centre = r.vec2("centre", {0.0, 0.0});
+}
 // A time history table under `key`, e.g. history = { kind = "sine", frequency = 10.0 }.
 TimeFunction readTimeFunction(TableReader& r, std::string_view key);
 
@@ -60,6 +72,11 @@ BoltDefinition readBolt(TableReader& r);
 BoundaryElementsDefinition readBoundaryElements(TableReader& r);
 FlowBoundaryDefinition readFlowBoundary(TableReader& r);
 void readJointFlowKeys(TableReader& r, JointMaterial& joint);
+
+// [heat], [[heat_boundary]], [[heat_source]] (read_heat.cpp); the thermal keys of a
+// [[block_material]].
+void readHeat(TableReader& top, SceneDefinition& scene);
+void readThermalKeys(TableReader& r, BlockMaterial& material);
 
 // [[phase]].
 void readPhases(TableReader& top, SceneDefinition& scene);

@@ -139,6 +139,21 @@ class TableReader {
     }
     return p;
   }
+  // An array of [a, b] pairs of finite numbers, flattened; `shape` is the message for any other value.
+  std::vector<double> pairs(std::string_view key, const std::string& shape) {
+    const toml::node* n = node(key);
+    if (!n) fail(key, "is required");
+    const toml::array* a = n->as_array();
+    if (!a) fail(key, shape);
+    std::vector<double> out;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const toml::array* pair = (*a)[i].as_array();
+      if (!pair || pair->size() != 2 || !(*pair)[0].is_number() || !(*pair)[1].is_number()) fail(key, shape);
+      for (std::size_t k = 0; k < 2; ++k)
+        out.push_back(finiteNumber((*pair)[k], key, "pair " + std::to_string(i) + " value " + std::to_string(k)));
+    }
+    return out;
+  }
   std::vector<std::string> strings(std::string_view key) {
     const toml::node* n = node(key);
     if (!n) fail(key, "is required");

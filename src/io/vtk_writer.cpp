@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 #include "contact/contact_geometry.hpp"
@@ -238,6 +239,13 @@ void VtkSeries::write(const Model& m) {
   out << "</Cells>\n<PointData Vectors=\"displacement\">\n";
   vectorArray(out, "displacement", g.displacement);
   vectorArray(out, "velocity", g.velocity);
+  if (m.heat.on) {
+    // The gridpoints come first among the points; the others (rigid vertices, structures'
+    // nodes, cells of joints and fluid) have no temperature.
+    std::vector<double> temperature(g.points.size(), std::numeric_limits<double>::quiet_NaN());
+    for (int i = 0; i < m.gridpoints.size(); ++i) temperature[i] = m.heat.temperature[m.heat.nodeOfGridpoint[i]];
+    dataArray(out, "temperature", temperature, "Float64");
+  }
   out << "</PointData>\n<CellData>\n";
   const std::string kinds = std::string("kind (0 zone, 1 rigid block, 2 contact") +
                             (g.fluid ? ", 3 fluid domain, 4 flow knot" : "") + (g.beams ? ", 5 beam element, 6 cable element, 7 bolt reinforcement" : "") + ")";

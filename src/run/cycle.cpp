@@ -21,6 +21,7 @@
 #include "core/shown.hpp"
 #include "core/interrupt.hpp"
 #include "motion/rigid_motion.hpp"
+#include "thermal/heat.hpp"
 #include "zone/cst.hpp"
 #include "zone/direct_solve.hpp"
 
@@ -587,6 +588,7 @@ void Cycle::beginPhase(const PhaseChanges& changes, const std::string& phaseName
     BeamNodes& nd = model_.structures.nodes;
     for (int i = 0; i < nd.size(); ++i) nd.initialPosition[i] = nd.position[i];
   }
+  advanceHeat(model_, changes.heatTime);
   if (changes.staticSolve) solveDirectly();
 }
 
@@ -841,6 +843,7 @@ RunReport Cycle::run() {
   try {
     if (snapshots && !resumed) settings_.snapshot(model_);
     if (settings_.phases.empty()) {
+      advanceHeat(model_, settings_.heatTime);
       stepUntil(settings_.stop, report.stopReason);
     } else {
       for (std::size_t k = firstPhase_; k < settings_.phases.size(); ++k) {

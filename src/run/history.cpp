@@ -45,6 +45,8 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::MeanSxy, "model.mean_sxy", S::Model, "Pa", "sxy of all zones, averaged over their present areas"},
       {Q::GridpointDisplacementX, "gridpoint.displacement_x", S::Gridpoint, "m", "x displacement of a deformable block's gridpoint"},
       {Q::GridpointDisplacementY, "gridpoint.displacement_y", S::Gridpoint, "m", "y displacement of a deformable block's gridpoint"},
+      {Q::GridpointTemperature, "gridpoint.temperature", S::Gridpoint, "degrees", "temperature of the gridpoint's thermal node ([heat]), in the scene's unit of temperature"},
+      {Q::HeatTime, "heat.time", S::Model, "s", "the thermal clock ([heat])"},
       {Q::GridpointVelocityX, "gridpoint.velocity_x", S::Gridpoint, "m/s", "x velocity of the gridpoint (at the half step)"},
       {Q::GridpointVelocityY, "gridpoint.velocity_y", S::Gridpoint, "m/s", "y velocity of the gridpoint (at the half step)"},
       {Q::GridpointAccelerationX, "gridpoint.acceleration_x", S::Gridpoint, "m/s^2", "x acceleration of the gridpoint: the change of velocity over the step, at the step's start"},
@@ -287,6 +289,8 @@ double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) 
       return m.gridpoints.position[h.gridpoint].y - m.gridpoints.initialPosition[h.gridpoint].y;
     case HistoryQuantity::GridpointVelocityX: return m.gridpoints.velocity[h.gridpoint].x;
     case HistoryQuantity::GridpointVelocityY: return m.gridpoints.velocity[h.gridpoint].y;
+    case HistoryQuantity::GridpointTemperature: return m.heat.temperature[m.heat.nodeOfGridpoint[h.gridpoint]];
+    case HistoryQuantity::HeatTime: return m.heat.time;
     case HistoryQuantity::ZoneSxx: return m.zones.sxx[h.zone];
     case HistoryQuantity::ZoneSyy: return m.zones.syy[h.zone];
     case HistoryQuantity::ZoneSxy: return m.zones.sxy[h.zone];

@@ -27,6 +27,7 @@ enum class HistoryQuantity {
   CableAxialForce, CableDisplacement, CableSlip, CableBondForce,
   BoltAxialForce, BoltShearForce, BoltAxialDisplacement, BoltShearDisplacement,
   BlockReactionX, BlockReactionY,
+  GridpointTemperature, HeatTime,
 };
 
 

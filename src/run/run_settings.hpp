@@ -65,6 +65,7 @@ struct PhaseChanges {
   std::vector<int> freeCables, freeBolts;     // taken out at the phase's start (indices)
   std::vector<int> installCables, installBolts;  // then installed, stress-free where the rock is then
   std::optional<BoundaryElementField> boundaryElements;  // then put in place, holding the zones' stress
+  double heatTime = 0.0;  // s of thermal time advanced last, before the cycles
 };
 
 struct Phase {
@@ -85,6 +86,7 @@ struct RunSettings {
   double localDamping = 0.0;     // alpha_L of local damping (motion_totals.hpp), instead of mass damping
   bool densityScaling = false;   // gridpoint inertial masses scaled to one step (1.3-32 to 1.3-34)
   bool staticSolve = false;      // start from the direct solution of the elastic zones (zone/direct_solve)
+  double heatTime = 0.0;         // s of thermal time before the cycles of a run without phases
   StopCriteria stop;
   // Run in order; empty: one stage of the run, to `stop`.
   std::vector<Phase> phases;

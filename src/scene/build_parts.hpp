@@ -39,6 +39,9 @@ BoundaryElementField boundaryElementField(const Model& model, const BoundaryElem
 // The in-situ stress a far field's rigid blocks' edges hold ([initial_stress]'s sxx, syy, sxy).
 void holdInSitu(BoundaryElementField& field, const InitialStressDefinition& definition);
 
+// The thermal solution of [heat] on the model's zones (thermal/heat_state.hpp), ready to advance.
+void buildHeat(Model& model, const SceneDefinition& scene);
+
 // A phase resolved against the model. `geometry` is the model as the phase will find it
 // (excavated by the phases before; made on the first excavation), on which its boundaries select
 // gridpoints and edges; `active` holds the names of the boundaries active when it starts.

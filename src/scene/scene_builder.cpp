@@ -408,6 +408,8 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
                         h.quantity == HistoryQuantity::MeanSxy;
   if (zoneMean && m.zones.size() == 0)
     d.origin.fail("quantity", d.quantity + " averages the stress of the zones, and the scene has no deformable block");
+  if ((h.quantity == HistoryQuantity::GridpointTemperature || h.quantity == HistoryQuantity::HeatTime) && !m.heat.on)
+    d.origin.fail("quantity", d.quantity + " is a heat-conduction quantity, and the scene has no [heat] table");
   if (info->subject == HistorySubject::Block) {
     h.block = blockNamed(m, d.origin, "block", d.block);
     if (m.blocks.deformable[h.block])
@@ -592,6 +594,23 @@ Scene buildScene(SceneDefinition s) {
     if (phase.changes.boundaryElements && s.initialStress) holdInSitu(*phase.changes.boundaryElements, *s.initialStress);
   for (const InitialWaveDefinition& d : s.initialWaves) m.initialWaves.push_back(initialWave(m, d));
   for (const JointAssignmentDefinition& d : s.jointAssignments) assignJoint(m, d);
+  if (s.heat) {
+    buildHeat(m, s);
+    if (!s.phases.empty() && s.heat->time > 0.0)
+      s.heat->origin.fail("time", "is the thermal time of a run without phases; with [[phase]] give each phase its heat_time");
+    scene.settings.heatTime = s.heat->time;
+  } else if (!s.heatBoundaries.empty() || !s.heatSources.empty()) {
+    const Origin& o = s.heatBoundaries.empty() ? s.heatSources.front().origin : s.heatBoundaries.front().origin;
+    o.failTable("needs a [heat] table: it sets the thermal solution this acts on");
+  }
+  for (std::size_t k = 0; k < s.phases.size(); ++k) {
+    const PhaseDefinition& d = s.phases[k];
+    if (d.heatTime && !s.heat) d.origin.fail("heat_time", "needs a [heat] table");
+    if (s.heat && !d.excavations.empty())
+      d.excavations.front().origin.failTable("a phase cannot excavate a model that conducts heat ([heat]): the thermal "
+                                             "nodes are formed once; excavate before the run with [[excavation]]");
+    scene.settings.phases[k].changes.heatTime = d.heatTime.value_or(0.0);
+  }
   std::set<std::string> historyNames;
   for (const HistoryDefinition& d : s.histories) {
     if (!historyNames.insert(d.name).second) d.origin.fail("name", "history '" + d.name + "' is defined twice");

@@ -123,6 +123,38 @@ struct BoundaryElementsDefinition {
   Origin origin;
 };
 
+// [heat]: the thermal solution's settings (1.4.3).
+struct HeatDefinition {
+  double initialTemperature = 0.0;
+  double theta = 0.0;   // 0 explicit, 0.5 Crank-Nicolson, 1 backward Euler
+  double step = 0.0;    // s; 0: the explicit default, 0.95 of its stable step
+  double time = 0.0;    // s of thermal time before the cycles of a run without phases
+  Origin origin;
+};
+
+// [[heat_boundary]]: a fixed temperature on the selected gridpoints, or a flux or convection on
+// the outline edges between them.
+struct HeatBoundaryDefinition {
+  enum class Kind { Temperature, Flux, Convection } kind = Kind::Temperature;
+  double value = 0.0;    // the temperature, the flux (W/m^2 into the body) or h (W/(m^2 K))
+  double ambient = 0.0;  // convection's ambient temperature
+  HeatDecay decay;       // flux only
+  std::string block;     // "": every deformable block
+  CoordinateRange x, y, r, angle;
+  Vec2 centre;
+  Origin origin;
+};
+
+// [[heat_source]]: a line source at a gridpoint, or a volumetric source over a block.
+struct HeatSourceDefinition {
+  bool atPoint = true;
+  Vec2 point;
+  std::string block;
+  double power = 0.0;    // W/m at a point, W/m^3 over a block
+  HeatDecay decay;
+  Origin origin;
+};
+
 struct InitialStressDefinition {
   std::array<double, 4> stress{};  // sxx, syy, sxy, szz at the origin
   std::array<double, 4> gradientX{}, gradientY{};
@@ -291,6 +323,7 @@ struct PhaseDefinition {
   std::vector<CableDefinition> cables;        // installed at the phase's start
   std::vector<BoltDefinition> bolts;          // installed at the phase's start
   std::optional<BoundaryElementsDefinition> boundaryElements;  // put in place at the phase's start
+  std::optional<double> heatTime;  // s of thermal time advanced at the phase's start
   Origin origin;
 };
 
@@ -309,6 +342,9 @@ struct SceneDefinition {
   std::optional<InitialStressDefinition> initialStress;
   std::optional<BoundaryElementsDefinition> boundaryElements;
   std::vector<InitialWaveDefinition> initialWaves;
+  std::optional<HeatDefinition> heat;
+  std::vector<HeatBoundaryDefinition> heatBoundaries;
+  std::vector<HeatSourceDefinition> heatSources;
   std::optional<FluidDefinition> fluid;
   std::vector<FlowBoundaryDefinition> flowBoundaries;
   std::vector<BeamMaterialDefinition> beamMaterials;

@@ -20,7 +20,7 @@ LAYERS = {
     "geometry": 1, "joint": 1,
     "contact": 2,
     "motion": 3,
-    "zone": 4, "boundary": 4, "flow": 4, "structure": 4, "bem": 4,
+    "zone": 4, "boundary": 4, "flow": 4, "structure": 4, "bem": 4, "thermal": 4,
     "run": 5,
     "scene": 6,
     "io": 7,
@@ -28,7 +28,7 @@ LAYERS = {
 }
 # Header-only value types that the model stores, and that include nothing of vdec's own: they
 # sit with their component but belong to the bottom layer.
-BOTTOM_LAYER_HEADERS = {"boundary/time_function.hpp", "bem/far_field_state.hpp", "zone/mohr_coulomb.hpp", "flow/flow_state.hpp",
+BOTTOM_LAYER_HEADERS = {"boundary/time_function.hpp", "bem/far_field_state.hpp", "thermal/heat_state.hpp", "zone/mohr_coulomb.hpp", "flow/flow_state.hpp",
                         "structure/structure_state.hpp"}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/([^"]+)"', re.M)
 

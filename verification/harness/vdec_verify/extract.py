@@ -32,8 +32,8 @@ closure (positive closing) from a block's displacement (positive up); default 1.
                                                       phase of that name (results["phases"]): a phased run's
                                                       state after each phase
     run_meta       path                               a number at a dotted path in results["run"],
-                                                      results["energy"], results["fluid"] or
-                                                      results["phases"] (a phase by its name), e.g.
+                                                      results["energy"], results["fluid"], results["heat"]
+                                                      or results["phases"] (a phase by its name), e.g.
                                                       "energy.largest_excess", "fluid.balance.imbalance",
                                                       "phases.diffuse.start_time"
     exit_code      (none)                             the exit code of the run

@@ -30,7 +30,7 @@ of = "domains" (pressure, area, content; at the domains' present centres) and "k
 aperture, length, conductance; at their present points; block selects the knot's block A) for
 fracture flow.
 of = "zones" (quantities sxx, syy, sxy, szz and, about `centre`, srr, stt, srt), "gridpoints"
-(ux, uy and, about `centre`, ur, ut) or "contacts" (sn, the normal stress, compression positive,
+(ux, uy, temperature with [heat], and, about `centre`, ur, ut) or "contacts" (sn, the normal stress, compression positive,
 and tau, the shear stress: force over contact length; the closed contacts, at their present
 points; block selects block A, the side of the contact's corner). Selection ranges on the initial position: x, y, r (about
 centre) = [low, high]; angle = [low, high] in degrees about centre. The abscissa (for plots and
@@ -58,7 +58,7 @@ def difference(*, minuend, subtrahend):
 BUILTINS = {"ratio": ratio, "difference": difference}
 
 ZONE_QUANTITIES = ("sxx", "syy", "sxy", "szz", "srr", "stt", "srt", "plastic")
-GRIDPOINT_QUANTITIES = ("ux", "uy", "ur", "ut")
+GRIDPOINT_QUANTITIES = ("ux", "uy", "ur", "ut", "temperature")
 CONTACT_QUANTITIES = ("sn", "tau")
 # Fracture flow: results["domains"] (pressure, area, content at the domains' present centres) and
 # results["knots"] (flow, aperture, length, conductance at the knots' present points).
@@ -147,6 +147,10 @@ def _values(columns, of, quantity, theta):
         return np.asarray(columns[quantity], dtype=float)
     if quantity not in GRIDPOINT_QUANTITIES:
         raise ExtractError(f"gridpoints have no quantity '{quantity}' (known: {', '.join(GRIDPOINT_QUANTITIES)})")
+    if quantity == "temperature":
+        if "temperature" not in columns:
+            raise ExtractError("the gridpoints have no temperature (a scene without [heat])")
+        return np.asarray(columns["temperature"], dtype=float)
     ux = np.asarray(columns["displacement_x"], dtype=float)
     uy = np.asarray(columns["displacement_y"], dtype=float)
     return {"ux": ux, "uy": uy, "ur": ux * c + uy * s, "ut": -ux * s + uy * c}[quantity]

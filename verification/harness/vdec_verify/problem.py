@@ -45,7 +45,7 @@ Keys of problem.toml:
              or { constant = VALUE }   required; function is looked up in the `analytic` package
                                   run_params = { dt = "run.dt" } (optional, function references): further
                                   keyword arguments read from the results.json of the run the check
-                                  reads (a dotted path into run, energy, fluid or phases.NAME), e.g. the time step the
+                                  reads (a dotted path into run, energy, fluid, heat or phases.NAME), e.g. the time step the
                                   solver chose, for a reference of the discrete scheme
     norm = "scalar"               required: scalar | upper_bound | equal (scalar extracts), L2 | Linf (series)
     rtol = 1e-3                   at least one of rtol, atol (>= 0), not both zero for norms scalar, L2 and
@@ -133,9 +133,10 @@ LEVEL_KEYS = ("name", "h", "overrides", "level")
 # Norms whose error is >= 0 and shrinks with the zone size: the ones an order can be fitted to.
 STUDY_NORMS = ("scalar", "L2", "Linf")
 # The results.json objects a run_meta path (or a reference's run_params) may start in; "fluid" holds
-# the fracture flow's counts and mass balance; "phases" a phase's start time and length, by name.
-RUN_META_ROOTS = ("run", "energy", "fluid", "phases")
-RUN_META_ROOTS_TEXT = "run, energy, fluid or phases (phases.NAME.FIELD)"
+# the fracture flow's counts and mass balance, "heat" the thermal clock and heat balance; "phases" a
+# phase's start time and length, by name.
+RUN_META_ROOTS = ("run", "energy", "fluid", "heat", "phases")
+RUN_META_ROOTS_TEXT = "run, energy, fluid, heat or phases (phases.NAME.FIELD)"
 # What a field extract reads: deformable-block fields, contacts, and the fluid's domains and knots.
 FIELD_SOURCES = ("zones", "gridpoints", "contacts") + tuple(FLOW_QUANTITIES)
 REFERENCE_KEYS = ("function", "params", "component", "constant", "run_params")

@@ -1,0 +1,202 @@
+#include "thermal/heat.hpp"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "core/shown.hpp"
+
+namespace vdec {
+
+namespace {
+
+double decayFactor(const HeatDecay& decay, double t) {
+  if (decay.empty()) return 1.0;
+  double f = 0.0;
+  for (const auto& [a, tau] : decay) f += a * std::exp(-t / tau);
+  return f;
+}
+
+// The loads' power at each node at thermal time t, sources and boundary fluxes apart.
+void loadsAt(const HeatField& h, double t, std::vector<double>& source, std::vector<double>& flux) {
+  source.assign(h.temperature.size(), 0.0);
+  flux.assign(h.temperature.size(), 0.0);
+  for (std::size_t k = 0; k < h.loadNode.size(); ++k) {
+    const double power = h.loadPower[k] * decayFactor(h.decays[h.loadDecay[k]], t);
+    (h.loadBoundary[k] ? flux : source)[h.loadNode[k]] += power;
+  }
+}
+
+// y = K x over all nodes.
+void conduct(const HeatField& h, const std::vector<double>& x, std::vector<double>& y) {
+  y.assign(x.size(), 0.0);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    double sum = 0.0;
+    for (int e = h.rowStart[i]; e < h.rowStart[i + 1]; ++e) sum += h.conductance[e] * x[h.column[e]];
+    y[i] = sum;
+  }
+}
+
+// The convection of each node: its total h L / 2 and that times its ambient temperature.
+void convectionOf(const HeatField& h, std::vector<double>& conductance, std::vector<double>& drive) {
+  conductance.assign(h.temperature.size(), 0.0);
+  drive.assign(h.temperature.size(), 0.0);
+  for (std::size_t k = 0; k < h.convectionNode.size(); ++k) {
+    conductance[h.convectionNode[k]] += h.convectionConductance[k];
+    drive[h.convectionNode[k]] += h.convectionConductance[k] * h.convectionAmbient[k];
+  }
+}
+
+// One step of length dt from the present temperatures, theta-weighted; `solver` holds the
+// factorised C + theta dt (K + H) on the free nodes (theta > 0).
+struct FreeSystem {
+  std::vector<int> index;  // node -> row among the free nodes, -1 for a fixed node
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+  double dt = 0.0;
+};
+
+void factorise(const HeatField& h, const std::vector<double>& convection, double dt, FreeSystem& system) {
+  system.index.assign(h.temperature.size(), -1);
+  int free = 0;
+  for (int i = 0; i < h.size(); ++i)
+    if (!h.fixed[i]) system.index[i] = free++;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < h.size(); ++i) {
+    const int row = system.index[i];
+    if (row < 0) continue;
+    entries.emplace_back(row, row, h.capacity[i] + h.theta * dt * convection[i]);
+    for (int e = h.rowStart[i]; e < h.rowStart[i + 1]; ++e)
+      if (system.index[h.column[e]] >= 0) entries.emplace_back(row, system.index[h.column[e]], h.theta * dt * h.conductance[e]);
+  }
+  Eigen::SparseMatrix<double> A(free, free);
+  A.setFromTriplets(entries.begin(), entries.end());
+  system.solver.compute(A);
+  if (system.solver.info() != Eigen::Success)
+    throw InstabilityError("the thermal system C + theta dt K could not be factorised: check that every zone of a block "
+                         "with heat has a positive specific heat and density");
+  system.dt = dt;
+}
+
+void step(HeatField& h, double dt, FreeSystem& system) {
+  const int n = h.size();
+  std::vector<double> source, flux, convection, drive, KT;
+  loadsAt(h, h.time + h.theta * dt, source, flux);
+  convectionOf(h, convection, drive);
+  const std::vector<double> before = h.temperature;
+  conduct(h, before, KT);
+  if (h.theta == 0.0) {
+    for (int i = 0; i < n; ++i)
+      if (!h.fixed[i])
+        h.temperature[i] += dt * (source[i] + flux[i] + drive[i] - convection[i] * before[i] - KT[i]) / h.capacity[i];
+  } else {
+    if (system.dt != dt) {
+      factorise(h, convection, dt, system);
+      ++h.factorisations;
+    }
+    int free = 0;
+    for (int i = 0; i < n; ++i) free += !h.fixed[i];
+    Eigen::VectorXd b(free);
+    for (int i = 0; i < n; ++i) {
+      const int row = system.index[i];
+      if (row < 0) continue;
+      // Fixed neighbours are known at the end of the step as at its start.
+      double fixedPart = 0.0;
+      for (int e = h.rowStart[i]; e < h.rowStart[i + 1]; ++e)
+        if (h.fixed[h.column[e]]) fixedPart += h.conductance[e] * before[h.column[e]];
+      b[row] = h.capacity[i] * before[i] - (1.0 - h.theta) * dt * (KT[i] + convection[i] * before[i]) -
+               h.theta * dt * fixedPart + dt * (source[i] + flux[i] + drive[i]);
+    }
+    const Eigen::VectorXd x = system.solver.solve(b);
+    for (int i = 0; i < n; ++i)
+      if (system.index[i] >= 0) h.temperature[i] = x[system.index[i]];
+  }
+  // The balance over the free nodes: their stored change is what the loads, the convection and
+  // the fixed nodes gave them (K's rows sum to zero: conduction among free nodes cancels).
+  std::vector<double> mid(n), KMid;
+  for (int i = 0; i < n; ++i) mid[i] = (1.0 - h.theta) * before[i] + h.theta * h.temperature[i];
+  conduct(h, mid, KMid);
+  for (int i = 0; i < n; ++i) {
+    if (h.fixed[i]) {
+      h.fixedInflow += dt * KMid[i];
+      continue;
+    }
+    h.stored += h.capacity[i] * (h.temperature[i] - before[i]);
+    h.sources += dt * source[i];
+    h.boundary += dt * (flux[i] + drive[i] - convection[i] * mid[i]);
+  }
+  h.time += dt;
+  ++h.steps;
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(h.temperature[i]))
+      throw InstabilityError("a temperature is not a number after " + std::to_string(h.steps) +
+                           " thermal steps: check the thermal properties and loads");
+}
+
+}  // namespace
+
+void assembleHeat(Model& m) {
+  HeatField& h = m.heat;
+  const Zones& zn = m.zones;
+  const Gridpoints& g = m.gridpoints;
+  std::vector<Eigen::Triplet<double>> entries;
+  h.capacity.assign(h.temperature.size(), 0.0);
+  for (int z = 0; z < zn.size(); ++z) {
+    const BlockMaterial& mat = m.blockMaterials[zn.material[z]];
+    const auto& p = zn.gridpoint[z];
+    const Vec2 a = g.position[p[0]], b = g.position[p[1]], c = g.position[p[2]];
+    const double area = 0.5 * cross(b - a, c - a);
+    // The linear shape functions' gradients, (y_j - y_k, x_k - x_j) / 2A for (i, j, k) in turn.
+    const Vec2 corner[3] = {a, b, c};
+    Vec2 grad[3];
+    for (int i = 0; i < 3; ++i) {
+      const Vec2 pj = corner[(i + 1) % 3], pk = corner[(i + 2) % 3];
+      grad[i] = (0.5 / area) * Vec2{pj.y - pk.y, pk.x - pj.x};
+    }
+    const double cs = std::cos(mat.conductivityAngle), sn = std::sin(mat.conductivityAngle);
+    const double kxx = mat.conductivityX * cs * cs + mat.conductivityY * sn * sn;
+    const double kyy = mat.conductivityX * sn * sn + mat.conductivityY * cs * cs;
+    const double kxy = (mat.conductivityX - mat.conductivityY) * sn * cs;
+    for (int i = 0; i < 3; ++i) {
+      const int ni = h.nodeOfGridpoint[p[i]];
+      h.capacity[ni] += mat.density * mat.specificHeat * area / 3.0;
+      for (int j = 0; j < 3; ++j) {
+        const Vec2 flow{kxx * grad[j].x + kxy * grad[j].y, kxy * grad[j].x + kyy * grad[j].y};
+        entries.emplace_back(ni, h.nodeOfGridpoint[p[j]], area * dot(grad[i], flow));
+      }
+    }
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> K(h.size(), h.size());
+  K.setFromTriplets(entries.begin(), entries.end());
+  K.makeCompressed();
+  h.rowStart.assign(K.outerIndexPtr(), K.outerIndexPtr() + h.size() + 1);
+  h.column.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
+  h.conductance.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
+}
+
+double heatStableStep(const Model& m) {
+  const HeatField& h = m.heat;
+  std::vector<double> convection, drive;
+  convectionOf(h, convection, drive);
+  double fastest = 0.0;
+  for (int i = 0; i < h.size(); ++i) {
+    if (h.fixed[i]) continue;
+    double row = convection[i];
+    for (int e = h.rowStart[i]; e < h.rowStart[i + 1]; ++e) row += std::abs(h.conductance[e]);
+    fastest = std::max(fastest, row / h.capacity[i]);
+  }
+  return fastest > 0.0 ? 2.0 / fastest : INFINITY;
+}
+
+void advanceHeat(Model& m, double duration) {
+  HeatField& h = m.heat;
+  if (!h.on || !(duration > 0.0)) return;
+  const double whole = std::floor(duration / h.step + 1e-9);
+  double rest = duration - whole * h.step;
+  if (rest <= 1e-9 * h.step) rest = 0.0;
+  FreeSystem system;
+  for (long long k = 0; k < static_cast<long long>(whole); ++k) step(h, h.step, system);
+  if (rest > 0.0) step(h, rest, system);
+}
+
+}  // namespace vdec

@@ -1,0 +1,17 @@
+#pragma once
+// The thermal solution (NUREG/CR-5429 1.4.3): the conductance of the zones, the explicit scheme's
+// stable step, and the theta scheme that advances the temperatures on their own clock.
+#include "core/model.hpp"
+
+namespace vdec {
+
+// K of the zones (A B^T k B per triangle) and the lumped capacities, on the present positions.
+void assembleHeat(Model& model);
+// 2 / max_i(sum_j |K_ij| + h_i) / C_i over the free nodes: Gershgorin's bound on the explicit
+// scheme's limit 2 / lambda_max(C^-1 (K + H)); infinity when no free node conducts.
+double heatStableStep(const Model& model);
+// Advances the temperatures by `duration` seconds of thermal time in steps of heat.step (the last
+// one shorter if it does not divide), keeping the heat balance.
+void advanceHeat(Model& model, double duration);
+
+}  // namespace vdec
