@@ -34,6 +34,7 @@ struct BlockMaterial {
   // not given.
   double conductivityX = 0.0, conductivityY = 0.0, conductivityAngle = 0.0;
   double specificHeat = 0.0;
+  double expansion = 0.0;  // linear thermal expansion alpha, 1/degree; beta = 3 alpha (1.4-17)
 };
 
 // NUREG/CR-5429 1.4.7: model #1 (point contact, forces), #2 (Coulomb slip), #5 (Coulomb slip

@@ -86,6 +86,11 @@ void readThermalKeys(TableReader& r, BlockMaterial& mat) {
     mat.conductivityAngle = radians(angle);
   }
   if (r.has("specific_heat")) mat.specificHeat = r.positive("specific_heat");
+  if (r.has("expansion")) {
+    mat.expansion = r.nonNegative("expansion", 0.0);
+    if (mat.expansion > 1e-3) r.fail("expansion", "must be at most 1e-3 per degree (a linear expansion coefficient; rock's are near 1e-5), got " + shown(mat.expansion));
+    if (!mat.elastic()) r.fail("expansion", "needs the elastic constants (young and poisson, or bulk and shear): the expansion loads the zones through their bulk modulus");
+  }
 }
 
 void readHeat(TableReader& top, SceneDefinition& scene) {

@@ -379,6 +379,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
   for (const BoundaryCondition& b : m.boundaryConditions)
     if (!b.dashpots.empty() || !b.rigidDashpots.empty() || !b.freeField.empty())
       j["energy"]["boundary_dissipation"] = report.energy.boundaryDissipation;
+  if (m.heat.on) j["energy"]["thermal_stress"] = report.energy.thermalStress;
   if (!report.phases.empty()) {
     j["energy"]["removed"] = report.energy.removed;
     for (const Phase& phase : scene.settings.phases)

@@ -588,7 +588,7 @@ void Cycle::beginPhase(const PhaseChanges& changes, const std::string& phaseName
     BeamNodes& nd = model_.structures.nodes;
     for (int i = 0; i < nd.size(); ++i) nd.initialPosition[i] = nd.position[i];
   }
-  advanceHeat(model_, changes.heatTime);
+  advanceThermalClock(changes.heatTime);
   if (changes.staticSolve) solveDirectly();
 }
 
@@ -625,6 +625,19 @@ void Cycle::solveDirectly() {
     for (int b = 0; b < model_.blocks.size(); ++b) all[b] = b;
     detection_.requestRescan(all);
   }
+}
+
+void Cycle::advanceThermalClock(double duration) {
+  if (!model_.heat.on || !(duration > 0.0)) return;
+  advanceHeat(model_, duration);
+  bool expands = false;
+  for (const BlockMaterial& mat : model_.blockMaterials) expands = expands || mat.expansion > 0.0;
+  if (!expands) return;
+  // The thermal stress is a change of the zones' stress without a load's work: its elastic
+  // energy enters the account as supplied, as the direct solve's does.
+  const double before = storedElasticEnergy();
+  applyThermalStress(model_);
+  energy_.supplyByThermalStress(storedElasticEnergy() - before);
 }
 
 void Cycle::closePhase(PhaseReport& done, Clock::time_point started) const {
@@ -843,7 +856,7 @@ RunReport Cycle::run() {
   try {
     if (snapshots && !resumed) settings_.snapshot(model_);
     if (settings_.phases.empty()) {
-      advanceHeat(model_, settings_.heatTime);
+      advanceThermalClock(settings_.heatTime);
       stepUntil(settings_.stop, report.stopReason);
     } else {
       for (std::size_t k = firstPhase_; k < settings_.phases.size(); ++k) {

@@ -125,6 +125,8 @@ class Cycle {
   void excavateRigidBlocks(const ExcavationRegion& region);
   // A phase's direct solve of the elastic zones (zone/direct_solve), with its energy account.
   void solveDirectly();
+  // Advances the thermal clock, then loads the zones with the thermal stress of the change.
+  void advanceThermalClock(double duration);
   double storedElasticEnergy() const;
   void changeRigidBlocks(const std::vector<RigidBlockChange>& changes);
   void closePhase(PhaseReport& done, std::chrono::steady_clock::time_point started) const;

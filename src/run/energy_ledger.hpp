@@ -18,6 +18,7 @@ struct EnergyReport {
   double plasticDissipation = 0.0; // by Mohr-Coulomb zones
   double removed = 0.0;            // taken out without work between phases (resets, excavation)
   double staticSolve = 0.0;        // elastic energy set up by phases' direct solves, supplied without work
+  double thermalStress = 0.0;      // elastic energy the thermal stress set up (1.4-17), supplied without work
   double dampingDissipation = 0.0; // by mass damping
   double boundaryDissipation = 0.0; // by viscous boundaries
   double largestExcess = 0.0;      // max over the run of (kinetic + strain - supplied) / largest supplied
@@ -48,6 +49,11 @@ class EnergyLedger {
   void supplyByDirectSolve(double energy) {
     supplied_ += energy;
     terms_.staticSolve += energy;
+  }
+  // Elastic energy the temperature change put into the zones (its loads are not forces).
+  void supplyByThermalStress(double energy) {
+    supplied_ += energy;
+    terms_.thermalStress += energy;
   }
   // Energy taken out of the model without work (velocities reset between phases).
   void withdraw(double energy) {

@@ -179,6 +179,7 @@ void buildHeat(Model& m, const SceneDefinition& s) {
   checkSteps(d.time, d.origin, "time");
   for (const PhaseDefinition& phase : s.phases)
     if (phase.heatTime) checkSteps(*phase.heatTime, phase.origin, "heat_time");
+  holdZoneTemperatures(m);
   h.on = true;
 }
 

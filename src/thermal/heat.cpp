@@ -199,4 +199,34 @@ void advanceHeat(Model& m, double duration) {
   if (rest > 0.0) step(h, rest, system);
 }
 
+namespace {
+
+double zoneMeanTemperature(const Model& m, int z) {
+  const HeatField& h = m.heat;
+  const auto& p = m.zones.gridpoint[z];
+  return (h.temperature[h.nodeOfGridpoint[p[0]]] + h.temperature[h.nodeOfGridpoint[p[1]]] +
+          h.temperature[h.nodeOfGridpoint[p[2]]]) / 3.0;
+}
+
+}  // namespace
+
+void holdZoneTemperatures(Model& m) {
+  m.heat.zoneTemperature.resize(static_cast<std::size_t>(m.zones.size()));
+  for (int z = 0; z < m.zones.size(); ++z) m.heat.zoneTemperature[z] = zoneMeanTemperature(m, z);
+}
+
+void applyThermalStress(Model& m) {
+  Zones& zn = m.zones;
+  for (int z = 0; z < zn.size(); ++z) {
+    const double now = zoneMeanTemperature(m, z);
+    const double dT = now - m.heat.zoneTemperature[z];
+    m.heat.zoneTemperature[z] = now;
+    const BlockMaterial& mat = m.blockMaterials[zn.material[z]];
+    const double ds = -mat.bulk * 3.0 * mat.expansion * dT;
+    zn.sxx[z] += ds;
+    zn.syy[z] += ds;
+    zn.szz[z] += ds;
+  }
+}
+
 }  // namespace vdec

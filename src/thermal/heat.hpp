@@ -14,4 +14,11 @@ double heatStableStep(const Model& model);
 // one shorter if it does not divide), keeping the heat balance.
 void advanceHeat(Model& model, double duration);
 
+// The thermal stress of the temperature change since it was last applied (1.4-17): each zone's
+// mean temperature change dT adds -K beta dT (beta = 3 alpha) to sxx, syy and szz, as the
+// restrained isotropic expansion; the mechanical cycles then find the new equilibrium.
+void applyThermalStress(Model& model);
+// The zones' mean temperatures as the reference for the thermal stress to come.
+void holdZoneTemperatures(Model& model);
+
 }  // namespace vdec
