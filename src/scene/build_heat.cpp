@@ -179,7 +179,9 @@ void buildHeat(Model& m, const SceneDefinition& s) {
   checkSteps(d.time, d.origin, "time");
   for (const PhaseDefinition& phase : s.phases)
     if (phase.heatTime) checkSteps(*phase.heatTime, phase.origin, "heat_time");
-  holdZoneTemperatures(m);
+  // The zones are stress-free at the initial temperature: a held boundary's different temperature
+  // is a change, whose thermal stress the first advance applies.
+  h.zoneTemperature.assign(static_cast<std::size_t>(m.zones.size()), d.initialTemperature);
   h.on = true;
 }
 

@@ -210,11 +210,6 @@ double zoneMeanTemperature(const Model& m, int z) {
 
 }  // namespace
 
-void holdZoneTemperatures(Model& m) {
-  m.heat.zoneTemperature.resize(static_cast<std::size_t>(m.zones.size()));
-  for (int z = 0; z < m.zones.size(); ++z) m.heat.zoneTemperature[z] = zoneMeanTemperature(m, z);
-}
-
 void applyThermalStress(Model& m) {
   Zones& zn = m.zones;
   for (int z = 0; z < zn.size(); ++z) {

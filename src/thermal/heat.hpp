@@ -18,7 +18,5 @@ void advanceHeat(Model& model, double duration);
 // mean temperature change dT adds -K beta dT (beta = 3 alpha) to sxx, syy and szz, as the
 // restrained isotropic expansion; the mechanical cycles then find the new equilibrium.
 void applyThermalStress(Model& model);
-// The zones' mean temperatures as the reference for the thermal stress to come.
-void holdZoneTemperatures(Model& model);
 
 }  // namespace vdec

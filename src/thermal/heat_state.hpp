@@ -36,7 +36,8 @@ struct HeatField {
   // Convection: h L / 2 of each edge end (W/K per metre) towards its ambient temperature.
   std::vector<int> convectionNode;
   std::vector<double> convectionConductance, convectionAmbient;
-  // Each zone's temperature when its thermal stress was last applied (the mean of its corners').
+  // Each zone's temperature when its thermal stress was last applied (the mean of its corners'),
+  // [heat] initial_temperature at the start.
   std::vector<double> zoneTemperature;
   // The heat balance since the start (J/m): stored = sources + boundary + fixed, to round-off.
   double stored = 0.0, sources = 0.0, boundary = 0.0, fixedInflow = 0.0;
