@@ -36,7 +36,7 @@ BAD = [
 ]
 
 
-@pytest.mark.requirements("REQ-THERM-006")
+@pytest.mark.requirements("REQ-THERM-006", "REQ-THERM-007")
 @pytest.mark.parametrize("what,text,key,phrase", BAD, ids=[b[0] for b in BAD])
 def test_bad_heat_input_is_a_scene_error_naming_the_key(tmp_path, what, text, key, phrase):
     assert text != STRIP
@@ -102,7 +102,7 @@ def test_the_conductivity_turns_with_its_angle(tmp_path):
     assert max(abs(turned[p] - other[p]) for p in other) > 1.0
 
 
-@pytest.mark.requirements("REQ-THERM-004")
+@pytest.mark.requirements("REQ-THERM-004", "REQ-THERM-005")
 def test_a_decaying_line_source_stores_what_it_releases(tmp_path):
     # A source of 100 W/m at a gridpoint inside the strip, decaying as 0.6 exp(-t / 2e3) +
     # 0.4 exp(-t / 2e4), over 1e4 s with Crank-Nicolson (its loads at mid-step): all of it is stored
