@@ -45,6 +45,11 @@ HeatBoundaryDefinition readHeatBoundary(TableReader& r) {
     if (d.kind != HeatBoundaryDefinition::Kind::Flux) r.fail("decay", "applies to a flux; a temperature or convection does not decay");
     d.decay = readDecay(r);
   }
+  if (r.has("history")) {
+    if (d.kind == HeatBoundaryDefinition::Kind::Convection)
+      r.fail("history", "applies to a temperature or a flux; a convection's ambient temperature is constant");
+    d.history = readTimeFunction(r, "history");
+  }
   d.block = r.string("block", "");
   readSelection(r, d);
   return d;

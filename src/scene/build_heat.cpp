@@ -52,8 +52,9 @@ int decayGroup(HeatField& h, const HeatDecay& decay) {
   return static_cast<int>(h.decays.size()) - 1;
 }
 
-void addLoad(HeatField& h, int node, double power, int decay, bool boundary) {
+void addLoad(HeatField& h, int node, double power, int decay, bool boundary, int history = -1) {
   h.loadNode.push_back(node);
+  h.loadHistory.push_back(history);
   h.loadPower.push_back(power);
   h.loadDecay.push_back(decay);
   h.loadBoundary.push_back(boundary);
@@ -71,12 +72,20 @@ void resolveHeatBoundary(Model& m, const HeatBoundaryDefinition& d) {
   }
   const GridpointSelection picked = selectGridpoints(m, inBlocks, d.x, d.y, d.r, d.angle, d.centre);
   const Gridpoints& g = m.gridpoints;
+  int history = -1;
+  if (d.history) {
+    h.histories.push_back(*d.history);
+    history = static_cast<int>(h.histories.size()) - 1;
+  }
   if (d.kind == HeatBoundaryDefinition::Kind::Temperature) {
     if (picked.count == 0) d.origin.failTable("selects no gridpoint: check block, x, y, r, angle");
     for (int i = 0; i < g.size(); ++i)
       if (picked.selected[i]) {
-        h.fixed[h.nodeOfGridpoint[i]] = 1;
-        h.temperature[h.nodeOfGridpoint[i]] = d.value;
+        const int node = h.nodeOfGridpoint[i];
+        h.fixed[node] = 1;
+        h.fixedValue[node] = d.value;
+        h.fixedHistory[node] = history;
+        h.temperature[node] = history < 0 ? d.value : d.value * h.histories[history](0.0);
       }
     return;
   }
@@ -89,7 +98,7 @@ void resolveHeatBoundary(Model& m, const HeatBoundaryDefinition& d) {
     for (const int p : {e.from, e.to}) {
       const int node = h.nodeOfGridpoint[p];
       if (d.kind == HeatBoundaryDefinition::Kind::Flux) {
-        addLoad(h, node, d.value * half, decay, true);
+        addLoad(h, node, d.value * half, decay, true, history);
       } else {
         h.convectionNode.push_back(node);
         h.convectionConductance.push_back(d.value * half);
@@ -151,6 +160,8 @@ void buildHeat(Model& m, const SceneDefinition& s) {
   h.nodeOfGridpoint = mergedNodes(m.gridpoints, slack, nodes);
   h.temperature.assign(static_cast<std::size_t>(nodes), d.initialTemperature);
   h.fixed.assign(static_cast<std::size_t>(nodes), 0);
+  h.fixedValue.assign(static_cast<std::size_t>(nodes), 0.0);
+  h.fixedHistory.assign(static_cast<std::size_t>(nodes), -1);
   h.decays.assign(1, {});
   h.theta = d.theta;
   for (const HeatBoundaryDefinition& b : s.heatBoundaries) resolveHeatBoundary(m, b);

@@ -139,6 +139,7 @@ struct HeatBoundaryDefinition {
   double value = 0.0;    // the temperature, the flux (W/m^2 into the body) or h (W/(m^2 K))
   double ambient = 0.0;  // convection's ambient temperature
   HeatDecay decay;       // flux only
+  std::optional<TimeFunction> history;  // temperature or flux: the value times f(t), t the thermal time
   std::string block;     // "": every deformable block
   CoordinateRange x, y, r, angle;
   Vec2 centre;

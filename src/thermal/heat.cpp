@@ -23,7 +23,8 @@ void loadsAt(const HeatField& h, double t, std::vector<double>& source, std::vec
   source.assign(h.temperature.size(), 0.0);
   flux.assign(h.temperature.size(), 0.0);
   for (std::size_t k = 0; k < h.loadNode.size(); ++k) {
-    const double power = h.loadPower[k] * decayFactor(h.decays[h.loadDecay[k]], t);
+    double power = h.loadPower[k] * decayFactor(h.decays[h.loadDecay[k]], t);
+    if (h.loadHistory[k] >= 0) power *= h.histories[h.loadHistory[k]](t);
     (h.loadBoundary[k] ? flux : source)[h.loadNode[k]] += power;
   }
 }
@@ -84,6 +85,10 @@ void step(HeatField& h, double dt, FreeSystem& system) {
   loadsAt(h, h.time + h.theta * dt, source, flux);
   convectionOf(h, convection, drive);
   const std::vector<double> before = h.temperature;
+  // Held nodes with a history take their temperature at the step's end now: the step's
+  // conduction sees them move from the old value to the new.
+  for (int i = 0; i < n; ++i)
+    if (h.fixed[i] && h.fixedHistory[i] >= 0) h.temperature[i] = h.fixedValue[i] * h.histories[h.fixedHistory[i]](h.time + dt);
   conduct(h, before, KT);
   if (h.theta == 0.0) {
     for (int i = 0; i < n; ++i)
@@ -100,10 +105,10 @@ void step(HeatField& h, double dt, FreeSystem& system) {
     for (int i = 0; i < n; ++i) {
       const int row = system.index[i];
       if (row < 0) continue;
-      // Fixed neighbours are known at the end of the step as at its start.
+      // Held neighbours at the end of the step are known.
       double fixedPart = 0.0;
       for (int e = h.rowStart[i]; e < h.rowStart[i + 1]; ++e)
-        if (h.fixed[h.column[e]]) fixedPart += h.conductance[e] * before[h.column[e]];
+        if (h.fixed[h.column[e]]) fixedPart += h.conductance[e] * h.temperature[h.column[e]];
       b[row] = h.capacity[i] * before[i] - (1.0 - h.theta) * dt * (KT[i] + convection[i] * before[i]) -
                h.theta * dt * fixedPart + dt * (source[i] + flux[i] + drive[i]);
     }

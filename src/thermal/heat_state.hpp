@@ -6,6 +6,8 @@
 #include <array>
 #include <vector>
 
+#include "boundary/time_function.hpp"
+
 namespace vdec {
 
 // A load's time factor: the sum of a_k exp(-t / tau_k) over its terms, or 1 without terms.
@@ -23,6 +25,11 @@ struct HeatField {
   std::vector<double> temperature;  // per node
   std::vector<double> capacity;     // per node: rho c A / 3 of the zones round it (J/K per metre)
   std::vector<char> fixed;          // a node held at its temperature
+  // A held node's temperature is fixedValue times its history's factor at the thermal time
+  // (fixedHistory -1: none, the value itself).
+  std::vector<double> fixedValue;
+  std::vector<int> fixedHistory;
+  std::vector<TimeFunction> histories;  // of held temperatures and loads, on the thermal clock
   // The zones' conductance matrix K (W/K per metre), all rows, compressed: row i's entries are
   // conductance[rowStart[i] .. rowStart[i + 1]) in columns column[...]. Symmetric, rows sum to zero.
   std::vector<int> rowStart, column;
@@ -30,7 +37,7 @@ struct HeatField {
   // Loads: power (W/m) at a node times its decay's factor; `boundary` tells a flux edge's share
   // from a source's, for the balance.
   std::vector<HeatDecay> decays;    // decays[0] is none
-  std::vector<int> loadNode, loadDecay;
+  std::vector<int> loadNode, loadDecay, loadHistory;  // loadHistory -1: none
   std::vector<double> loadPower;
   std::vector<char> loadBoundary;
   // Convection: h L / 2 of each edge end (W/K per metre) towards its ambient temperature.

@@ -133,3 +133,27 @@ def test_a_phased_thermal_run_restarts_bitwise_and_writes_its_temperatures(tmp_p
     assert again["gridpoints"] == whole["gridpoints"] and again["heat"] == whole["heat"]
     arrays, _ = last_vtk_cell_arrays(tmp_path / "strip-out")
     assert arrays["temperature"][:len(whole["gridpoints"]["temperature"])] == whole["gridpoints"]["temperature"]
+
+
+@pytest.mark.requirements("REQ-THERM-004")
+def test_held_temperatures_and_fluxes_follow_their_histories(tmp_path):
+    # A flux ramped linearly from 0 to q0 over the 1e4 s (a table history): Crank-Nicolson takes it at
+    # mid-step, exact for a linear load, so the strip stores q0 h T / 2. A held temperature on a
+    # sine history: the surface node is at 100 sin(2 pi f t) at the end, and the balance closes.
+    (tmp_path / "ramp.csv").write_text("0.0, 0.0\n1e4, 1.0\n")
+    ramp = SHORT.replace("initial_temperature = 0.0", "initial_temperature = 0.0\ntheta = 0.5\nstep = 250.0")
+    ramp = ramp.replace("temperature = 100.0", 'flux = 50.0\nhistory = { kind = "table", file = "ramp.csv" }')
+    done, results = run(tmp_path, ramp, name="ramp")
+    assert done.returncode == 0, done.stderr
+    assert results["heat"]["balance"]["stored"] == pytest.approx(50.0 * 0.05 * 1e4 / 2, rel=1e-12, abs=0)
+    sine = SHORT.replace("temperature = 100.0", 'temperature = 100.0\nhistory = { kind = "sine", frequency = 2.5e-5 }')
+    done, results = run(tmp_path, sine, name="sine")
+    assert done.returncode == 0, done.stderr
+    surface = [t for x, t in zip(results["gridpoints"]["x0"], results["gridpoints"]["temperature"]) if x == 0.0]
+    assert surface and all(t == pytest.approx(100.0 * math.sin(2 * math.pi * 2.5e-5 * 1e4), rel=1e-12, abs=0) for t in surface)
+    balance = results["heat"]["balance"]
+    assert abs(balance["imbalance"]) < 1e-9 * max(abs(balance["fixed"]), 1.0)
+    assert balance["fixed"] != 0.0
+    convection = SHORT.replace("temperature = 100.0", 'convection = { h = 1.0, ambient = 5.0 }\nhistory = { kind = "sine", frequency = 1.0 }')
+    done, _ = run(tmp_path, convection, name="convection")
+    assert done.returncode == 3 and "history" in done.stderr and "ambient temperature is constant" in done.stderr
