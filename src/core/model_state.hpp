@@ -121,7 +121,7 @@ void visitState(A& a, HeatField& h) {
   a(h.on), a(h.theta), a(h.step), a(h.stableStep), a(h.time), a(h.steps), a(h.factorisations), a(h.nodeOfGridpoint);
   a(h.temperature), a(h.capacity), a(h.fixed), a(h.fixedValue), a(h.fixedHistory), a(h.histories), a(h.rowStart), a(h.column), a(h.conductance), a(h.decays);
   a(h.loadNode), a(h.loadDecay), a(h.loadHistory), a(h.loadPower), a(h.loadBoundary), a(h.convectionNode), a(h.convectionConductance);
-  a(h.convectionAmbient), a(h.zoneTemperature), a(h.stored), a(h.sources), a(h.boundary), a(h.fixedInflow);
+  a(h.convectionAmbient), a(h.radiationNode), a(h.radiationCoefficient), a(h.radiationAmbient), a(h.zoneTemperature), a(h.stored), a(h.sources), a(h.boundary), a(h.fixedInflow);
 }
 template <class A>
 void visitState(A& a, Model& m) {

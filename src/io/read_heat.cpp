@@ -23,16 +23,25 @@ HeatDecay readDecay(TableReader& r) {
 HeatBoundaryDefinition readHeatBoundary(TableReader& r) {
   HeatBoundaryDefinition d;
   d.origin = r.origin();
-  const int given = r.has("temperature") + r.has("flux") + r.has("convection");
+  const int given = r.has("temperature") + r.has("flux") + r.has("convection") + r.has("radiation");
   if (given != 1)
-    r.failTable(given == 0 ? "sets nothing: give temperature, flux (W/m^2 into the body) or convection = { h, ambient }"
-                           : "give one of temperature, flux and convection");
+    r.failTable(given == 0 ? "sets nothing: give temperature, flux (W/m^2 into the body), convection = { h, ambient } or "
+                             "radiation = { emissivity, ambient }"
+                           : "give one of temperature, flux, convection and radiation");
   if (r.has("temperature")) {
     d.kind = HeatBoundaryDefinition::Kind::Temperature;
     d.value = r.number("temperature");
   } else if (r.has("flux")) {
     d.kind = HeatBoundaryDefinition::Kind::Flux;
     d.value = r.number("flux");
+  } else if (r.has("radiation")) {
+    d.kind = HeatBoundaryDefinition::Kind::Radiation;
+    auto c = r.subtable("radiation");
+    if (!c) r.fail("radiation", "must be a table, written radiation = { emissivity = 0.9, ambient = 293.15 }");
+    d.value = c->positive("emissivity");
+    if (d.value > 1.0) c->fail("emissivity", "must be in (0, 1], got " + shown(d.value));
+    d.ambient = c->positive("ambient");
+    c->finish();
   } else {
     d.kind = HeatBoundaryDefinition::Kind::Convection;
     auto c = r.subtable("convection");
@@ -46,8 +55,8 @@ HeatBoundaryDefinition readHeatBoundary(TableReader& r) {
     d.decay = readDecay(r);
   }
   if (r.has("history")) {
-    if (d.kind == HeatBoundaryDefinition::Kind::Convection)
-      r.fail("history", "applies to a temperature or a flux; a convection's ambient temperature is constant");
+    if (d.kind == HeatBoundaryDefinition::Kind::Convection || d.kind == HeatBoundaryDefinition::Kind::Radiation)
+      r.fail("history", "applies to a temperature or a flux; a convection's or radiation's ambient temperature is constant");
     d.history = readTimeFunction(r, "history");
   }
   d.block = r.string("block", "");

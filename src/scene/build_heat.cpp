@@ -15,6 +15,8 @@ namespace {
 
 // The most thermal steps one advance may take.
 constexpr double kHeatStepLimit = 1e7;
+// W/(m^2 K^4) (CODATA 2018, exact since the SI redefinition).
+constexpr double kStefanBoltzmann = 5.670374419e-8;
 
 // Gridpoints that coincide at the start, within `slack`, share one node; nodes are numbered in the
 // order of their first gridpoint.
@@ -99,6 +101,10 @@ void resolveHeatBoundary(Model& m, const HeatBoundaryDefinition& d) {
       const int node = h.nodeOfGridpoint[p];
       if (d.kind == HeatBoundaryDefinition::Kind::Flux) {
         addLoad(h, node, d.value * half, decay, true, history);
+      } else if (d.kind == HeatBoundaryDefinition::Kind::Radiation) {
+        h.radiationNode.push_back(node);
+        h.radiationCoefficient.push_back(d.value * kStefanBoltzmann * half);
+        h.radiationAmbient.push_back(d.ambient);
       } else {
         h.convectionNode.push_back(node);
         h.convectionConductance.push_back(d.value * half);

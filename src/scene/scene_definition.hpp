@@ -135,9 +135,9 @@ struct HeatDefinition {
 // [[heat_boundary]]: a fixed temperature on the selected gridpoints, or a flux or convection on
 // the outline edges between them.
 struct HeatBoundaryDefinition {
-  enum class Kind { Temperature, Flux, Convection } kind = Kind::Temperature;
-  double value = 0.0;    // the temperature, the flux (W/m^2 into the body) or h (W/(m^2 K))
-  double ambient = 0.0;  // convection's ambient temperature
+  enum class Kind { Temperature, Flux, Convection, Radiation } kind = Kind::Temperature;
+  double value = 0.0;    // the temperature, the flux (W/m^2 into the body), h (W/(m^2 K)) or the emissivity
+  double ambient = 0.0;  // convection's or radiation's ambient temperature
   HeatDecay decay;       // flux only
   std::optional<TimeFunction> history;  // temperature or flux: the value times f(t), t the thermal time
   std::string block;     // "": every deformable block

@@ -39,13 +39,25 @@ void conduct(const HeatField& h, const std::vector<double>& x, std::vector<doubl
   }
 }
 
-// The convection of each node: its total h L / 2 and that times its ambient temperature.
+// The convection of each node: its total h L / 2 and that times its ambient temperature; and its
+// radiation linearised about the present temperature T_n: c (T_a^4 - T^4) ~ c (T_a^4 + 3 T_n^4)
+// - 4 c T_n^3 T, a conductance 4 c T_n^3 towards the load c (T_a^4 + 3 T_n^4).
 void convectionOf(const HeatField& h, std::vector<double>& conductance, std::vector<double>& drive) {
   conductance.assign(h.temperature.size(), 0.0);
   drive.assign(h.temperature.size(), 0.0);
   for (std::size_t k = 0; k < h.convectionNode.size(); ++k) {
     conductance[h.convectionNode[k]] += h.convectionConductance[k];
     drive[h.convectionNode[k]] += h.convectionConductance[k] * h.convectionAmbient[k];
+  }
+  for (std::size_t k = 0; k < h.radiationNode.size(); ++k) {
+    const int i = h.radiationNode[k];
+    const double T = h.temperature[i], c = h.radiationCoefficient[k], Ta = h.radiationAmbient[k];
+    if (!(T > 0.0))
+      throw InstabilityError("a radiating node's temperature is " + shown(T) + " after " + std::to_string(h.steps) +
+                             " thermal steps: radiation needs absolute temperatures (kelvin) above zero; give every "
+                             "temperature of the scene in kelvin");
+    conductance[i] += 4.0 * c * T * T * T;
+    drive[i] += c * (Ta * Ta * Ta * Ta + 3.0 * T * T * T * T);
   }
 }
 
@@ -91,11 +103,22 @@ void step(HeatField& h, double dt, FreeSystem& system) {
     if (h.fixed[i] && h.fixedHistory[i] >= 0) h.temperature[i] = h.fixedValue[i] * h.histories[h.fixedHistory[i]](h.time + dt);
   conduct(h, before, KT);
   if (h.theta == 0.0) {
+    for (const int i : h.radiationNode) {
+      // The radiation's conductance grows as T^3: the explicit step may no longer be stable.
+      double row = convection[i];
+      for (int e = h.rowStart[i]; e < h.rowStart[i + 1]; ++e) row += std::abs(h.conductance[e]);
+      if (!h.fixed[i] && dt * row > 2.0 * h.capacity[i])
+        throw InstabilityError("the explicit thermal step " + shown(dt) + " s is above the stable step " +
+                               shown(2.0 * h.capacity[i] / row) + " s of a radiating node at " + shown(before[i]) +
+                               " K (its linearised conductance 4 epsilon sigma T^3 grows with T): lower heat.step, or "
+                               "give theta > 0");
+    }
     for (int i = 0; i < n; ++i)
       if (!h.fixed[i])
         h.temperature[i] += dt * (source[i] + flux[i] + drive[i] - convection[i] * before[i] - KT[i]) / h.capacity[i];
   } else {
-    if (system.dt != dt) {
+    // Radiation's linearised conductance moves with the temperature: factorise every step then.
+    if (system.dt != dt || !h.radiationNode.empty()) {
       factorise(h, convection, dt, system);
       ++h.factorisations;
     }

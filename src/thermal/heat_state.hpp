@@ -46,6 +46,10 @@ struct HeatField {
   // Each zone's temperature when its thermal stress was last applied (the mean of its corners'),
   // [heat] initial_temperature at the start.
   std::vector<double> zoneTemperature;
+  // Radiation: epsilon sigma L / 2 of each edge end (W/(m K^4) per metre) towards its ambient
+  // temperature (kelvin), linearised about each step's start (heat.cpp).
+  std::vector<int> radiationNode;
+  std::vector<double> radiationCoefficient, radiationAmbient;
   // The heat balance since the start (J/m): stored = sources + boundary + fixed, to round-off.
   double stored = 0.0, sources = 0.0, boundary = 0.0, fixedInflow = 0.0;
   int size() const { return static_cast<int>(temperature.size()); }

@@ -695,3 +695,20 @@ def test_jointed_block_that_cannot_slip_and_bad_input():
         heat.jointed_block_slip_onset(**args, kn=0.0)
     with pytest.raises(ValueError, match="held"):
         heat.block_uniform_heating(dT=1.0, held="y", **ROCK)
+
+
+@pytest.mark.requirements("REQ-QA-003", "REQ-THERM-008")
+def test_radiating_slab_balances_conduction_and_radiation():
+    Ts = heat.radiating_slab_surface_temperature(T1=600.0, T_inf=300.0, k=3.0, L=1.0, emissivity=0.8)
+    # Independently: the conducted and the radiated fluxes agree at Ts, and Ts lies between the two.
+    conducted = 3.0 * (600.0 - Ts) / 1.0
+    radiated = 0.8 * 5.670374419e-8 * (Ts ** 4 - 300.0 ** 4)
+    assert 300.0 < Ts < 600.0
+    assert conducted == pytest.approx(radiated, rel=1e-12, abs=0)
+    # A black face to cold surroundings of a thin, very conductive slab is near T1; a poor emitter too.
+    assert heat.radiating_slab_surface_temperature(T1=600.0, T_inf=300.0, k=1e6, L=1.0, emissivity=1.0) == pytest.approx(600.0, rel=1e-4, abs=0)
+    assert heat.radiating_slab_surface_temperature(T1=600.0, T_inf=300.0, k=3.0, L=1.0, emissivity=1e-9) == pytest.approx(600.0, rel=1e-6, abs=0)
+    # Known value: 3 (600 - 386.1778) = 642.67 W/m^2 = 0.8 sigma (386.1778^4 - 300^4).
+    assert Ts == pytest.approx(386.1778, abs=1e-4)
+    with pytest.raises(ValueError):
+        heat.radiating_slab_surface_temperature(T1=600.0, T_inf=300.0, k=3.0, L=1.0, emissivity=1.5)

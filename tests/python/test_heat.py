@@ -17,6 +17,8 @@ BAD = [
     ("implicit without a step", STRIP.replace("initial_temperature = 0.0", "theta = 0.5"), "heat.step", "is required with theta > 0"),
     ("two conditions", STRIP.replace("temperature = 100.0", "temperature = 100.0\nflux = 1.0"), "heat_boundary[0]", "give one of"),
     ("no condition", STRIP.replace("temperature = 100.0\n", ""), "heat_boundary[0]", "sets nothing"),
+    ("emissivity above 1", STRIP.replace("temperature = 100.0", "radiation = { emissivity = 1.2, ambient = 300.0 }"), "emissivity", "must be in (0, 1]"),
+    ("radiation without ambient", STRIP.replace("temperature = 100.0", "radiation = { emissivity = 0.5 }"), "ambient", "is required"),
     ("decay of a temperature", STRIP.replace("temperature = 100.0", "temperature = 100.0\ndecay = [[1.0, 10.0]]"), "decay", "applies to a flux"),
     ("bad decay", STRIP.replace("temperature = 100.0", "flux = 1.0\ndecay = [[1.0, -10.0]]"), "decay", "must be > 0"),
     ("no specific heat", STRIP.replace("specific_heat = 1000.0\n", ""), "specific_heat", "is required with [heat]"),
@@ -157,3 +159,12 @@ def test_held_temperatures_and_fluxes_follow_their_histories(tmp_path):
     convection = SHORT.replace("temperature = 100.0", 'convection = { h = 1.0, ambient = 5.0 }\nhistory = { kind = "sine", frequency = 1.0 }')
     done, _ = run(tmp_path, convection, name="convection")
     assert done.returncode == 3 and "history" in done.stderr and "ambient temperature is constant" in done.stderr
+
+
+@pytest.mark.requirements("REQ-THERM-008")
+def test_radiation_below_absolute_zero_stops_the_run(tmp_path):
+    # Radiation needs kelvin: a scene in degrees Celsius below zero stops with the instability code.
+    cold = STRIP.replace("initial_temperature = 0.0", "initial_temperature = -10.0").replace(
+        "temperature = 100.0", "radiation = { emissivity = 0.5, ambient = 300.0 }")
+    done, _ = run(tmp_path, cold)
+    assert done.returncode == 5 and "radiation needs absolute temperatures (kelvin)" in done.stderr, done.stderr

@@ -29,7 +29,7 @@ Special functions: scipy.special erfc, erfcx (erfcx(z) = exp(z^2) erfc(z)) and e
 import math
 
 import numpy as np
-from scipy import integrate, special
+from scipy import integrate, optimize, special
 
 
 def _arr(x):
@@ -563,3 +563,23 @@ def jointed_block_heating(*, dT, E, nu, alpha, joint_angle_deg, cohesion, fricti
     c, s = math.cos(theta), math.sin(theta)
     return {"sxx": S, "szz": nu * S - E * alpha * dT, "sigma_n": S * c * c, "tau": -S * s * c,
             "slip": slip, "dT_slip": dT_slip}
+
+
+STEFAN_BOLTZMANN = 5.670374419e-8  # W/(m^2 K^4), CODATA 2018 (exact in the SI since 2019)
+
+
+def radiating_slab_surface_temperature(*, T1, T_inf, k, L, emissivity):
+    """Steady surface temperature Ts (kelvin) of a slab of thickness L and conductivity k whose face
+    x = 0 is held at T1 and whose face x = L radiates to surroundings at T_inf with the emissivity
+    given: the conducted flux k (T1 - Ts) / L equals the radiated one, epsilon sigma (Ts^4 - T_inf^4).
+    The balance's left side falls and its right side rises with Ts, so its root between T_inf and T1
+    is unique; found by Brent's method to round-off (rtol 1e-15). The profile is linear, T1 + (Ts - T1) x / L.
+    """
+    T1, T_inf = float(_positive("T1", T1)), float(_positive("T_inf", T_inf))
+    k, L = float(_positive("k", k)), float(_positive("L", L))
+    if not 0.0 < emissivity <= 1.0:
+        raise ValueError(f"emissivity = {emissivity}: must be in (0, 1]")
+    if T1 == T_inf:
+        return T1
+    balance = lambda Ts: k * (T1 - Ts) / L - emissivity * STEFAN_BOLTZMANN * (Ts ** 4 - T_inf ** 4)
+    return optimize.brentq(balance, min(T1, T_inf), max(T1, T_inf), xtol=1e-300, rtol=1e-15, maxiter=200)
