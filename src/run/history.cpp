@@ -47,6 +47,10 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::GridpointDisplacementY, "gridpoint.displacement_y", S::Gridpoint, "m", "y displacement of a deformable block's gridpoint"},
       {Q::GridpointTemperature, "gridpoint.temperature", S::Gridpoint, "degrees", "temperature of the gridpoint's thermal node ([heat]), in the scene's unit of temperature"},
       {Q::HeatTime, "heat.time", S::Model, "s", "the thermal clock ([heat])"},
+      {Q::HeatStored, "heat.stored", S::Model, "J/m", "heat stored in the free thermal nodes since the start ([heat])"},
+      {Q::HeatSources, "heat.sources", S::Model, "J/m", "heat released by the [[heat_source]]s since the start"},
+      {Q::HeatBoundary, "heat.boundary", S::Model, "J/m", "heat in through fluxes, convection and radiation since the start"},
+      {Q::HeatFixed, "heat.fixed", S::Model, "J/m", "heat the held nodes gave their neighbours since the start"},
       {Q::GridpointVelocityX, "gridpoint.velocity_x", S::Gridpoint, "m/s", "x velocity of the gridpoint (at the half step)"},
       {Q::GridpointVelocityY, "gridpoint.velocity_y", S::Gridpoint, "m/s", "y velocity of the gridpoint (at the half step)"},
       {Q::GridpointAccelerationX, "gridpoint.acceleration_x", S::Gridpoint, "m/s^2", "x acceleration of the gridpoint: the change of velocity over the step, at the step's start"},
@@ -291,6 +295,10 @@ double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) 
     case HistoryQuantity::GridpointVelocityY: return m.gridpoints.velocity[h.gridpoint].y;
     case HistoryQuantity::GridpointTemperature: return m.heat.temperature[m.heat.nodeOfGridpoint[h.gridpoint]];
     case HistoryQuantity::HeatTime: return m.heat.time;
+    case HistoryQuantity::HeatStored: return m.heat.stored;
+    case HistoryQuantity::HeatSources: return m.heat.sources;
+    case HistoryQuantity::HeatBoundary: return m.heat.boundary;
+    case HistoryQuantity::HeatFixed: return m.heat.fixedInflow;
     case HistoryQuantity::ZoneSxx: return m.zones.sxx[h.zone];
     case HistoryQuantity::ZoneSyy: return m.zones.syy[h.zone];
     case HistoryQuantity::ZoneSxy: return m.zones.sxy[h.zone];

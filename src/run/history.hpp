@@ -27,7 +27,7 @@ enum class HistoryQuantity {
   CableAxialForce, CableDisplacement, CableSlip, CableBondForce,
   BoltAxialForce, BoltShearForce, BoltAxialDisplacement, BoltShearDisplacement,
   BlockReactionX, BlockReactionY,
-  GridpointTemperature, HeatTime,
+  GridpointTemperature, HeatTime, HeatStored, HeatSources, HeatBoundary, HeatFixed,
 };
 
 

@@ -408,7 +408,10 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
                         h.quantity == HistoryQuantity::MeanSxy;
   if (zoneMean && m.zones.size() == 0)
     d.origin.fail("quantity", d.quantity + " averages the stress of the zones, and the scene has no deformable block");
-  if ((h.quantity == HistoryQuantity::GridpointTemperature || h.quantity == HistoryQuantity::HeatTime) && !m.heat.on)
+  const bool thermal = h.quantity == HistoryQuantity::GridpointTemperature || h.quantity == HistoryQuantity::HeatTime ||
+                       h.quantity == HistoryQuantity::HeatStored || h.quantity == HistoryQuantity::HeatSources ||
+                       h.quantity == HistoryQuantity::HeatBoundary || h.quantity == HistoryQuantity::HeatFixed;
+  if (thermal && !m.heat.on)
     d.origin.fail("quantity", d.quantity + " is a heat-conduction quantity, and the scene has no [heat] table");
   if (info->subject == HistorySubject::Block) {
     h.block = blockNamed(m, d.origin, "block", d.block);

@@ -125,11 +125,13 @@ def test_a_decaying_line_source_stores_what_it_releases(tmp_path):
 @pytest.mark.requirements("REQ-THERM-005")
 def test_a_phased_thermal_run_restarts_bitwise_and_writes_its_temperatures(tmp_path):
     text = SHORT.replace("[model]", "[output]\nvtk_every = 1\n[model]")
+    text = text.replace("[[phase]]", "[[history]]\nname = \"stored\"\nquantity = \"heat.stored\"\n[[phase]]", 1)
     done, whole = run(tmp_path, text, "--save", "t1", name="strip")
     assert done.returncode == 0, done.stderr
     assert [p["stop_reason"] for p in whole["phases"]] == ["cycles"] * 3
     assert whole["heat"]["time"] == pytest.approx(1e4, rel=1e-12, abs=0)
     assert whole["histories"]["heat_time"]["value"][-1] == whole["heat"]["time"]
+    assert whole["histories"]["stored"]["value"][-1] == whole["heat"]["balance"]["stored"] > 0.0
     resumed, again = restart(tmp_path, "strip", tmp_path / "strip-out" / "after-phase-1.vdecstate", "resumed")
     assert resumed.returncode == 0, resumed.stderr
     assert again["gridpoints"] == whole["gridpoints"] and again["heat"] == whole["heat"]
