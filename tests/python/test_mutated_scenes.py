@@ -39,6 +39,17 @@ def _limits(mutant):
 
 
 def limits(document, path=(), mutation=""):
+    return _cycle_limits(document, path, mutation) + _thermal_limits(document, path)
+
+
+def _thermal_limits(document, path):
+    """A mutant of a thermal time (a huge heat_time is valid, and would take its steps) advances it
+    in one implicit step, so that it ends soon without hiding the mutated key."""
+    thermal_time = path[:2] == ("heat", "time") or (path[:1] == ("phase",) and path[2:3] == ("heat_time",))
+    return ["heat.theta=1.0", "heat.step=1e300"] if thermal_time and "heat" in document else []
+
+
+def _cycle_limits(document, path, mutation):
     if "phase" not in document:
         if path == ("stop",) and mutation in ("missing-key", "wrong-type"):
             return []
