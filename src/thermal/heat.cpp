@@ -61,15 +61,18 @@ void convectionOf(const HeatField& h, std::vector<double>& conductance, std::vec
   }
 }
 
-// One step of length dt from the present temperatures, theta-weighted; `solver` holds the
-// factorised C + theta dt (K + H) on the free nodes (theta > 0).
-struct FreeSystem {
+// What the steps of one advance share: the factorised C + theta dt (K + H) on the free nodes
+// (theta > 0), and the per-node buffers, sized once, so that a step allocates nothing.
+struct StepWork {
   std::vector<int> index;  // node -> row among the free nodes, -1 for a fixed node
+  int free = 0;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
   double dt = 0.0;
+  std::vector<double> source, flux, convection, drive, KT, before, mid, KMid;
+  Eigen::VectorXd b, x;
 };
 
-void factorise(const HeatField& h, const std::vector<double>& convection, double dt, FreeSystem& system) {
+void factorise(const HeatField& h, const std::vector<double>& convection, double dt, StepWork& system) {
   system.index.assign(h.temperature.size(), -1);
   int free = 0;
   for (int i = 0; i < h.size(); ++i)
@@ -82,6 +85,7 @@ void factorise(const HeatField& h, const std::vector<double>& convection, double
     for (int e = h.rowStart[i]; e < h.rowStart[i + 1]; ++e)
       if (system.index[h.column[e]] >= 0) entries.emplace_back(row, system.index[h.column[e]], h.theta * dt * h.conductance[e]);
   }
+  system.free = free;
   Eigen::SparseMatrix<double> A(free, free);
   A.setFromTriplets(entries.begin(), entries.end());
   system.solver.compute(A);
@@ -91,12 +95,13 @@ void factorise(const HeatField& h, const std::vector<double>& convection, double
   system.dt = dt;
 }
 
-void step(HeatField& h, double dt, FreeSystem& system) {
+void step(HeatField& h, double dt, StepWork& system) {
   const int n = h.size();
-  std::vector<double> source, flux, convection, drive, KT;
+  std::vector<double> &source = system.source, &flux = system.flux, &convection = system.convection;
+  std::vector<double> &drive = system.drive, &KT = system.KT, &before = system.before;
   loadsAt(h, h.time + h.theta * dt, source, flux);
   convectionOf(h, convection, drive);
-  const std::vector<double> before = h.temperature;
+  before = h.temperature;
   // Held nodes with a history take their temperature at the step's end now: the step's
   // conduction sees them move from the old value to the new.
   for (int i = 0; i < n; ++i)
@@ -122,9 +127,8 @@ void step(HeatField& h, double dt, FreeSystem& system) {
       factorise(h, convection, dt, system);
       ++h.factorisations;
     }
-    int free = 0;
-    for (int i = 0; i < n; ++i) free += !h.fixed[i];
-    Eigen::VectorXd b(free);
+    Eigen::VectorXd& b = system.b;
+    b.resize(system.free);
     for (int i = 0; i < n; ++i) {
       const int row = system.index[i];
       if (row < 0) continue;
@@ -135,13 +139,14 @@ void step(HeatField& h, double dt, FreeSystem& system) {
       b[row] = h.capacity[i] * before[i] - (1.0 - h.theta) * dt * (KT[i] + convection[i] * before[i]) -
                h.theta * dt * fixedPart + dt * (source[i] + flux[i] + drive[i]);
     }
-    const Eigen::VectorXd x = system.solver.solve(b);
+    system.x = system.solver.solve(b);
     for (int i = 0; i < n; ++i)
-      if (system.index[i] >= 0) h.temperature[i] = x[system.index[i]];
+      if (system.index[i] >= 0) h.temperature[i] = system.x[system.index[i]];
   }
   // The balance over the free nodes: their stored change is what the loads, the convection and
   // the fixed nodes gave them (K's rows sum to zero: conduction among free nodes cancels).
-  std::vector<double> mid(n), KMid;
+  std::vector<double> &mid = system.mid, &KMid = system.KMid;
+  mid.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) mid[i] = (1.0 - h.theta) * before[i] + h.theta * h.temperature[i];
   conduct(h, mid, KMid);
   for (int i = 0; i < n; ++i) {
@@ -222,7 +227,7 @@ void advanceHeat(Model& m, double duration) {
   const double whole = std::floor(duration / h.step + 1e-9);
   double rest = duration - whole * h.step;
   if (rest <= 1e-9 * h.step) rest = 0.0;
-  FreeSystem system;
+  StepWork system;
   for (long long k = 0; k < static_cast<long long>(whole); ++k) step(h, h.step, system);
   if (rest > 0.0) step(h, rest, system);
 }
