@@ -25,6 +25,7 @@ HistoryDefinition readHistory(TableReader& r) {
   else if (subject == HistorySubject::Beam) h.beam = r.string("beam");
   else if (subject == HistorySubject::Cable) h.cable = r.string("cable");
   else if (subject == HistorySubject::Bolt) h.bolt = r.string("bolt");
+  else if (subject == HistorySubject::Line) h.from = r.vec2("from"), h.to = r.vec2("to");
   else if (subject != HistorySubject::Model && subject != HistorySubject::Fluid) h.block = r.string("block");
   const bool located = h.quantity.rfind("domain.", 0) == 0 || h.quantity.rfind("knot.", 0) == 0;
   if (subject == HistorySubject::Gridpoint || subject == HistorySubject::Zone || subject == HistorySubject::Beam || subject == HistorySubject::Cable ||

@@ -51,6 +51,7 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::HeatSources, "heat.sources", S::Model, "J/m", "heat released by the [[heat_source]]s since the start"},
       {Q::HeatBoundary, "heat.boundary", S::Model, "J/m", "heat in through fluxes, convection and radiation since the start"},
       {Q::HeatFixed, "heat.fixed", S::Model, "J/m", "heat the held nodes gave their neighbours since the start"},
+      {Q::HeatFlow, "heat.flow", S::Line, "W/m", "heat flow through the zone edges along the segment from `from` to `to`, towards the right of that direction: the conducted flux -k grad T of the zones on each edge (their mean where two meet), times the edge's length ([heat])"},
       {Q::GridpointVelocityX, "gridpoint.velocity_x", S::Gridpoint, "m/s", "x velocity of the gridpoint (at the half step)"},
       {Q::GridpointVelocityY, "gridpoint.velocity_y", S::Gridpoint, "m/s", "y velocity of the gridpoint (at the half step)"},
       {Q::GridpointAccelerationX, "gridpoint.acceleration_x", S::Gridpoint, "m/s^2", "x acceleration of the gridpoint: the change of velocity over the step, at the step's start"},
@@ -299,6 +300,7 @@ double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) 
     case HistoryQuantity::HeatSources: return m.heat.sources;
     case HistoryQuantity::HeatBoundary: return m.heat.boundary;
     case HistoryQuantity::HeatFixed: return m.heat.fixedInflow;
+    case HistoryQuantity::HeatFlow: return heatFlowAcross(m, h.line, h.point, h.lineEnd);
     case HistoryQuantity::ZoneSxx: return m.zones.sxx[h.zone];
     case HistoryQuantity::ZoneSyy: return m.zones.syy[h.zone];
     case HistoryQuantity::ZoneSxy: return m.zones.sxy[h.zone];

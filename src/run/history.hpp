@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/model.hpp"
+#include "thermal/heat.hpp"
 
 namespace vdec {
 
@@ -27,7 +28,7 @@ enum class HistoryQuantity {
   CableAxialForce, CableDisplacement, CableSlip, CableBondForce,
   BoltAxialForce, BoltShearForce, BoltAxialDisplacement, BoltShearDisplacement,
   BlockReactionX, BlockReactionY,
-  GridpointTemperature, HeatTime, HeatStored, HeatSources, HeatBoundary, HeatFixed,
+  GridpointTemperature, HeatTime, HeatStored, HeatSources, HeatBoundary, HeatFixed, HeatFlow,
 };
 
 
@@ -37,7 +38,8 @@ enum class HistoryQuantity {
 // Cable: the node (displacement, slip, bond force) or element (axial force) of a named cable nearest a point.
 // Bolt: the reinforcement of a named bolt nearest a point (found at each sample: a bolt installed
 // by a phase has its reinforcements from then on).
-enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone, Fluid, Beam, Cable, Bolt };
+// Line: the zone edges along a segment from `point` to `lineEnd` (heat.flow).
+enum class HistorySubject { Block, Joint, Model, Gridpoint, Zone, Fluid, Beam, Cable, Bolt, Line };
 
 struct HistoryQuantityInfo {
   HistoryQuantity quantity;
@@ -67,6 +69,8 @@ struct HistorySpec {
   int cableNode = -1;   // Cable subject: the node nearest the point
   int cableElement = -1;
   int bolt = -1;        // Bolt subject
+  Vec2 lineEnd;         // Line subject: the segment from `point` to here
+  HeatLine line;        // and its zone edges
 };
 
 // Acceleration quantities are formed by the cycle from the velocity they are the rate of:
@@ -104,6 +108,7 @@ struct HistorySeries {
 template <class A>
 void visitState(A& a, HistorySpec& h) {
   a(h.name), a(h.quantity), a(h.block), a(h.otherBlock), a(h.gridpoint), a(h.zone), a(h.every), a(h.point);
+  a(h.lineEnd), a(h.line.edge), a(h.line.share);
 }
 
 template <class A>

@@ -410,7 +410,8 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
     d.origin.fail("quantity", d.quantity + " averages the stress of the zones, and the scene has no deformable block");
   const bool thermal = h.quantity == HistoryQuantity::GridpointTemperature || h.quantity == HistoryQuantity::HeatTime ||
                        h.quantity == HistoryQuantity::HeatStored || h.quantity == HistoryQuantity::HeatSources ||
-                       h.quantity == HistoryQuantity::HeatBoundary || h.quantity == HistoryQuantity::HeatFixed;
+                       h.quantity == HistoryQuantity::HeatBoundary || h.quantity == HistoryQuantity::HeatFixed ||
+                       h.quantity == HistoryQuantity::HeatFlow;
   if (thermal && !m.heat.on)
     d.origin.fail("quantity", d.quantity + " is a heat-conduction quantity, and the scene has no [heat] table");
   if (info->subject == HistorySubject::Block) {
@@ -453,6 +454,15 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
       if (bolts[i].name == d.bolt) h.bolt = i;
     if (h.bolt < 0) d.origin.fail("bolt", "no [[bolt]] or [[phase.bolt]] is named '" + d.bolt + "'");
     h.point = *d.point;
+  } else if (info->subject == HistorySubject::Line) {
+    if (!(norm(d.to - d.from) > 0.0)) d.origin.fail("to", "is the point `from`: a line needs two distinct ends");
+    h.point = d.from;
+    h.lineEnd = d.to;
+    h.line = heatLine(m, d.from, d.to);
+    if (h.line.edge.empty())
+      d.origin.fail("from", "the segment from (" + shown(d.from.x) + ", " + shown(d.from.y) + ") to (" + shown(d.to.x) + ", " +
+                                shown(d.to.y) + ") runs along no zone edge: heat.flow sums the flux through the zones' edges "
+                                "that lie on it, so give ends on a line of the zoning (a block's side, a row of gridpoints)");
   } else if (info->subject == HistorySubject::Joint) {
     h.block = blockNamed(m, d.origin, "blocks", d.blocks[0]);
     h.otherBlock = blockNamed(m, d.origin, "blocks", d.blocks[1]);

@@ -279,6 +279,7 @@ struct HistoryDefinition {
   std::string bolt;                  // bolt quantities
   std::array<std::string, 2> blocks; // joint quantities
   std::optional<Vec2> point;         // gridpoint and zone quantities
+  Vec2 from, to;                     // line quantities (heat.flow)
   int every = 1;
   Origin origin;
 };

@@ -2,7 +2,9 @@
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "core/errors.hpp"
 #include "core/shown.hpp"
@@ -166,37 +168,46 @@ void step(HeatField& h, double dt, StepWork& system) {
                            " thermal steps: check the thermal properties and loads");
 }
 
+// The linear shape functions' gradients of a triangle, (y_j - y_k, x_k - x_j) / 2A for (i, j, k)
+// in turn, on the positions the conductance was assembled on (the scene's); returns the area.
+double shapeGradients(const Model& m, int z, Vec2 (&grad)[3]) {
+  const auto& p = m.zones.gridpoint[z];
+  const Vec2 corner[3] = {m.gridpoints.initialPosition[p[0]], m.gridpoints.initialPosition[p[1]],
+                          m.gridpoints.initialPosition[p[2]]};
+  const double area = 0.5 * cross(corner[1] - corner[0], corner[2] - corner[0]);
+  for (int i = 0; i < 3; ++i) {
+    const Vec2 pj = corner[(i + 1) % 3], pk = corner[(i + 2) % 3];
+    grad[i] = (0.5 / area) * Vec2{pj.y - pk.y, pk.x - pj.x};
+  }
+  return area;
+}
+
+// k grad: the conductivity tensor, kx along the material's axis at conductivityAngle, ky across it.
+Vec2 conducted(const BlockMaterial& mat, Vec2 grad) {
+  const double cs = std::cos(mat.conductivityAngle), sn = std::sin(mat.conductivityAngle);
+  const double kxx = mat.conductivityX * cs * cs + mat.conductivityY * sn * sn;
+  const double kyy = mat.conductivityX * sn * sn + mat.conductivityY * cs * cs;
+  const double kxy = (mat.conductivityX - mat.conductivityY) * sn * cs;
+  return {kxx * grad.x + kxy * grad.y, kxy * grad.x + kyy * grad.y};
+}
+
 }  // namespace
 
 void assembleHeat(Model& m) {
   HeatField& h = m.heat;
   const Zones& zn = m.zones;
-  const Gridpoints& g = m.gridpoints;
   std::vector<Eigen::Triplet<double>> entries;
   h.capacity.assign(h.temperature.size(), 0.0);
   for (int z = 0; z < zn.size(); ++z) {
     const BlockMaterial& mat = m.blockMaterials[zn.material[z]];
     const auto& p = zn.gridpoint[z];
-    const Vec2 a = g.position[p[0]], b = g.position[p[1]], c = g.position[p[2]];
-    const double area = 0.5 * cross(b - a, c - a);
-    // The linear shape functions' gradients, (y_j - y_k, x_k - x_j) / 2A for (i, j, k) in turn.
-    const Vec2 corner[3] = {a, b, c};
     Vec2 grad[3];
-    for (int i = 0; i < 3; ++i) {
-      const Vec2 pj = corner[(i + 1) % 3], pk = corner[(i + 2) % 3];
-      grad[i] = (0.5 / area) * Vec2{pj.y - pk.y, pk.x - pj.x};
-    }
-    const double cs = std::cos(mat.conductivityAngle), sn = std::sin(mat.conductivityAngle);
-    const double kxx = mat.conductivityX * cs * cs + mat.conductivityY * sn * sn;
-    const double kyy = mat.conductivityX * sn * sn + mat.conductivityY * cs * cs;
-    const double kxy = (mat.conductivityX - mat.conductivityY) * sn * cs;
+    const double area = shapeGradients(m, z, grad);
     for (int i = 0; i < 3; ++i) {
       const int ni = h.nodeOfGridpoint[p[i]];
       h.capacity[ni] += mat.density * mat.specificHeat * area / 3.0;
-      for (int j = 0; j < 3; ++j) {
-        const Vec2 flow{kxx * grad[j].x + kxy * grad[j].y, kxy * grad[j].x + kyy * grad[j].y};
-        entries.emplace_back(ni, h.nodeOfGridpoint[p[j]], area * dot(grad[i], flow));
-      }
+      for (int j = 0; j < 3; ++j)
+        entries.emplace_back(ni, h.nodeOfGridpoint[p[j]], area * dot(grad[i], conducted(mat, grad[j])));
     }
   }
   Eigen::SparseMatrix<double, Eigen::RowMajor> K(h.size(), h.size());
@@ -255,6 +266,53 @@ void applyThermalStress(Model& m) {
     zn.syy[z] += ds;
     zn.szz[z] += ds;
   }
+}
+
+HeatLine heatLine(const Model& m, Vec2 from, Vec2 to) {
+  const HeatField& h = m.heat;
+  const Vec2 along = to - from;
+  const double length = norm(along);
+  const double tolerance = 1e-6 * length;
+  auto onLine = [&](Vec2 p) {
+    const double t = dot(p - from, along) / (length * length);
+    return t >= -1e-9 && t <= 1.0 + 1e-9 && std::abs(cross(along, p - from)) / length <= tolerance;
+  };
+  // A zone edge is keyed by its thermal nodes, so that the zones of two blocks that meet along
+  // it share it as the zones of one block do.
+  std::map<std::pair<int, int>, int> zonesOnEdge;
+  HeatLine line;
+  std::vector<std::pair<int, int>> keys;
+  for (int z = 0; z < m.zones.size(); ++z) {
+    const auto& p = m.zones.gridpoint[z];
+    for (int i = 0; i < 3; ++i) {
+      const int a = p[i], b = p[(i + 1) % 3];
+      if (!onLine(m.gridpoints.initialPosition[a]) || !onLine(m.gridpoints.initialPosition[b])) continue;
+      const std::pair<int, int> key = std::minmax(h.nodeOfGridpoint[a], h.nodeOfGridpoint[b]);
+      ++zonesOnEdge[key];
+      line.edge.push_back(3 * z + i);
+      keys.push_back(key);
+    }
+  }
+  for (const auto& key : keys) line.share.push_back(1.0 / zonesOnEdge[key]);
+  return line;
+}
+
+double heatFlowAcross(const Model& m, const HeatLine& line, Vec2 from, Vec2 to) {
+  const HeatField& h = m.heat;
+  const Vec2 along = to - from;
+  const Vec2 normal = (1.0 / norm(along)) * Vec2{along.y, -along.x};
+  double flow = 0.0;
+  for (std::size_t k = 0; k < line.edge.size(); ++k) {
+    const int z = line.edge[k] / 3, i = line.edge[k] % 3;
+    const auto& p = m.zones.gridpoint[z];
+    Vec2 grad[3];
+    shapeGradients(m, z, grad);
+    Vec2 gradient{0.0, 0.0};
+    for (int j = 0; j < 3; ++j) gradient += h.temperature[h.nodeOfGridpoint[p[j]]] * grad[j];
+    const double edge = norm(m.gridpoints.initialPosition[p[(i + 1) % 3]] - m.gridpoints.initialPosition[p[i]]);
+    flow -= line.share[k] * edge * dot(conducted(m.blockMaterials[m.zones.material[z]], gradient), normal);
+  }
+  return flow;
 }
 
 }  // namespace vdec

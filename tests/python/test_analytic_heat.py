@@ -142,6 +142,9 @@ def test_step_surface_temperature_solves_the_heat_equation_and_its_flux_is_fouri
     # surface flux by hand: k (Ts - T0) / sqrt(pi kappa t) = 2.5 * 100 / sqrt(pi) = 141.0474 W/m^2
     assert heat.semi_infinite_step_heat_flux(x=0.0, t=1e6, T0=20.0, Ts=120.0, k=K_ROCK, kappa=KAPPA) \
         == approx(141.0474, rel=1e-6)
+    # through a section 0.05 m high: 141.0474 * 0.05 = 7.05237 W/m
+    assert heat.semi_infinite_step_heat_flow(x=0.0, t=1e6, T0=20.0, Ts=120.0, k=K_ROCK, kappa=KAPPA, height=0.05) \
+        == approx(7.05237, rel=1e-6)
 
 
 @REQ

@@ -170,3 +170,85 @@ def test_radiation_below_absolute_zero_stops_the_run(tmp_path):
         "temperature = 100.0", "radiation = { emissivity = 0.5, ambient = 300.0 }")
     done, _ = run(tmp_path, cold)
     assert done.returncode == 5 and "radiation needs absolute temperatures (kelvin)" in done.stderr, done.stderr
+
+
+PLATE = """[model]
+rounding = 0.001
+[[block_material]]
+name = "rock"
+density = 2500.0
+young = 10e9
+poisson = 0.25
+conductivity = 3.0
+specific_heat = 1000.0
+[[joint_material]]
+name = "joint"
+kn = 1e10
+ks = 1e10
+[[block]]
+name = "left"
+material = "rock"
+vertices = [[0.0, 0.0], [0.5, 0.0], [0.5, 0.2], [0.0, 0.2]]
+zoning = { nx = 10, ny = 4 }
+[[block]]
+name = "right"
+material = "rock"
+vertices = [[0.5, 0.0], [1.0, 0.0], [1.0, 0.2], [0.5, 0.2]]
+zoning = { nx = 10, ny = 4 }
+[[boundary]]
+block = "left"
+x = [0.0, 1.0]
+fix = ["x", "y"]
+[[boundary]]
+block = "right"
+x = [0.0, 1.0]
+fix = ["x", "y"]
+[heat]
+initial_temperature = 0.0
+theta = 1.0
+step = 1e9
+time = 1e10
+[[heat_boundary]]
+block = "left"
+x = [0.0, 0.0]
+temperature = 100.0
+[[heat_boundary]]
+block = "right"
+x = [1.0, 1.0]
+temperature = 0.0
+[stop]
+cycles = 1
+"""
+
+
+def flow_history(name, start, end):
+    return f'[[history]]\nname = "{name}"\nquantity = "heat.flow"\nfrom = [{start[0]}, {start[1]}]\nto = [{end[0]}, {end[1]}]\n'
+
+
+@pytest.mark.requirements("REQ-THERM-005")
+def test_the_heat_flow_through_a_line_is_the_conducted_flux_times_its_length(tmp_path):
+    # Steady conduction along a plate of two blocks (a joint at x = 0.5 m) held at 100 and 0 degrees
+    # at its ends: T is linear, which linear triangles hold exactly, and the flow through any section
+    # of its 0.2 m height is k dT/L h = 3 * 100 * 0.2 = 60 W/m in +x, through the held end, a section
+    # inside a block and the joint (edges with a zone of each block) alike; backwards it is -60, and
+    # along the adiabatic top nothing crosses.
+    lines = {"end": ((0.0, 0.0), (0.0, 0.2)), "inside": ((0.25, 0.0), (0.25, 0.2)), "joint": ((0.5, 0.0), (0.5, 0.2)),
+             "backwards": ((0.75, 0.2), (0.75, 0.0)), "top": ((0.0, 0.2), (1.0, 0.2)), "half": ((0.85, 0.1), (0.85, 0.2))}
+    text = PLATE + "".join(flow_history(name, *ends) for name, ends in lines.items())
+    done, results = run(tmp_path, text)
+    assert done.returncode == 0, done.stderr
+    flow = {name: results["histories"][name]["value"][-1] for name in lines}
+    for name in ("end", "inside", "joint"):
+        assert flow[name] == pytest.approx(60.0, rel=1e-9, abs=0), name
+    assert flow["backwards"] == pytest.approx(-60.0, rel=1e-9, abs=0)
+    assert flow["half"] == pytest.approx(30.0, rel=1e-9, abs=0)
+    assert abs(flow["top"]) < 1e-9
+
+
+@pytest.mark.requirements("REQ-THERM-005", "REQ-THERM-006")
+def test_a_heat_flow_line_off_the_zone_edges_is_a_scene_error(tmp_path):
+    done, _ = run(tmp_path, PLATE + flow_history("off", (0.26, 0.0), (0.26, 0.2)))
+    assert done.returncode == 3
+    assert "history[0].from" in done.stderr and "runs along no zone edge" in done.stderr, done.stderr
+    done, _ = run(tmp_path, PLATE + flow_history("point", (0.25, 0.0), (0.25, 0.0)))
+    assert done.returncode == 3 and "history[0].to" in done.stderr and "two distinct ends" in done.stderr, done.stderr

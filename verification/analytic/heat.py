@@ -138,6 +138,12 @@ def semi_infinite_step_heat_flux(*, x, t, T0, Ts, k, kappa):
     return k * (Ts - T0) / np.sqrt(math.pi * _arr(kappa) * _arr(t)) * np.exp(-z * z)
 
 
+def semi_infinite_step_heat_flow(*, x, t, T0, Ts, k, kappa, height):
+    """Heat flow (W per metre of thickness) in +x through a section x = const of the given height of
+    semi_infinite_step_temperature: the flux, uniform over the section, times its height."""
+    return semi_infinite_step_heat_flux(x=x, t=t, T0=T0, Ts=Ts, k=k, kappa=kappa) * _positive("height", height)
+
+
 def semi_infinite_constant_flux_temperature(*, x, t, T0, q0, k, kappa):
     """Temperature at depth x >= 0 of a semi-infinite solid initially at T0 into whose surface a constant
     heat flux q0 (W/m^2, positive into the solid) enters from t = 0:
