@@ -514,3 +514,35 @@ def test_a_studied_derived_check_reads_another_run_of_the_problem(tmp_path):
     assert invalid == [] and study["pass"], study
     assert metrics[0]["error"] == pytest.approx(0.01 * 0.03125 ** 2, rel=1e-9, abs=0)
     assert study["observed_order"] == pytest.approx(2.0, abs=1e-6)
+
+
+# ---------------------------------------------------------------- [[work_precision]] figures
+
+WORK = '''
+[[work_precision]]
+title = "fast against slow"
+series = [{ label = "plain", checks = [2] }]
+'''
+
+BAD_WORK = [
+    ('title = "fast against slow"\n', "", r"work_precision\[0\]\.title", "is required"),
+    ("checks = [2]", "checks = [3]", r"work_precision\[0\]\.series\[0\]\.checks", "not a \\[\\[check\\]\\] number from 1 to 2"),
+    ("checks = [2]", "checks = [1]", r"work_precision\[0\]\.series\[0\]\.checks", "not the studied check"),
+    ("checks = [2]", "checks = []", r"work_precision\[0\]\.series\[0\]\.checks", "must be a list"),
+    ('label = "plain", ', "", r"work_precision\[0\]\.series\[0\]\.label", "is required"),
+    ('title = "fast against slow"\n', 'title = "fast against slow"\nkind = "x"\n', r"work_precision\[0\]\.kind", "unknown key"),
+]
+
+
+@pytest.mark.requirements("REQ-QA-005")
+def test_a_work_precision_figure_loads_its_series_of_checks(tmp_path):
+    problem = load_problem(write_problem(tmp_path, VALID + PLAIN_CHECK + WORK))
+    assert [(w.title, w.series) for w in problem.work_precision] == [("fast against slow", (("plain", (1,)),))]
+
+
+@pytest.mark.requirements("REQ-QA-005")
+@pytest.mark.parametrize("old, new, key, phrase", BAD_WORK, ids=[f"{b[2]}: {b[3]}"[:80] for b in BAD_WORK])
+def test_work_precision_errors_name_the_key(tmp_path, old, new, key, phrase):
+    path = write_problem(tmp_path, mutated(old, new, VALID + PLAIN_CHECK + WORK))
+    with pytest.raises(ProblemError, match=rf"{key}': .*{phrase}"):
+        load_problem(path)

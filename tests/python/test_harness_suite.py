@@ -175,7 +175,7 @@ def test_index_html_is_self_contained_with_provenance_and_plots(suite):
     for pid in EXPECTED_STATUS:
         assert f'id="{pid}"' in page
     images = re.findall(r'<img src="([^"]+)"', page)
-    assert sorted({image.rsplit("-", 1)[0] for image in images}) == ["FX-FULL-ONLY", "FX-SCALARS", "FX-SERIES",
+    assert sorted({re.sub(r"-(check\d+|scalars|convergence|work-precision\d+)\.png$", "", image) for image in images}) == ["FX-FULL-ONLY", "FX-SCALARS", "FX-SERIES",
                                                                     "FX-SWEEP", "FX-WRONG-REFERENCE"]
     assert "FX-SERIES-check1.png" in images and "FX-SCALARS-scalars.png" in images
     assert '<a href="report.pdf">' in page and "traceability/rtm.html" in page
@@ -186,6 +186,19 @@ def test_index_html_is_self_contained_with_provenance_and_plots(suite):
     # Two invalid problems in the overview, and the circular check of FX-IDENTICAL.
     assert page.count('class="invalid">INVALID</td>') == 2 + 1
     assert "shear stress against shear displacement" in page
+
+
+@pytest.mark.requirements("REQ-QA-005")
+def test_a_work_precision_figure_draws_each_check_at_its_runs_wall_time(suite):
+    record = suite["problems"]["FX-SCALARS"]
+    [figure] = record["work_precision"]
+    assert figure["title"] == "two checks of the plain run against its wall time" and figure["norm"] == "scalar"
+    assert [s["label"] for s in figure["series"]] == ["force", "settlement"]
+    [force], [settlement] = (s["points"] for s in figure["series"])
+    assert (force["check"], force["run"], settlement["check"]) == (1, "plain", 5)
+    assert force["error"] == record["metrics"][0]["error"] and settlement["error"] == record["metrics"][4]["error"]
+    assert force["wall_seconds"] == record["runs"][0]["wall_seconds"] > 0.0
+    assert "FX-SCALARS-work-precision1.png" in (suite["out"] / "index.html").read_text()
 
 
 @pytest.mark.requirements("REQ-QA-001")

@@ -179,6 +179,35 @@ def study_figure(study):
     return png_bytes(fig)
 
 
+def work_precision_figure(figure):
+    """Error against wall seconds, one marked line per series (method), each point labelled with its run."""
+    fig = Figure(figsize=(5.0, 3.2))
+    ax = fig.add_axes([0.13, 0.15, 0.84, 0.72])
+    ax.set_title("\n".join(textwrap.wrap(figure["title"], 70)[:2]), fontsize=7)
+    ax.set_xlabel("wall seconds of the run", fontsize=7)
+    ax.set_ylabel(f"error ({figure.get('norm', '')})", fontsize=7)
+    ax.tick_params(labelsize=6)
+    drawn, all_errors = False, []
+    for number, series in enumerate(figure["series"]):
+        points = sorted((p["wall_seconds"], p["error"], p["run"]) for p in series["points"]
+                        if p["error"] is not None and p["wall_seconds"] and math.isfinite(p["error"]) and p["error"] > 0)
+        if not points:
+            continue
+        drawn = True
+        seconds, errors, runs = zip(*points)
+        all_errors += errors
+        ax.loglog(seconds, errors, marker="os^vD"[number % 5], lw=0.8, label=series["label"])
+        for x, e, run in points:
+            ax.annotate(run, (x, e), textcoords="offset points", xytext=(4, 4), fontsize=6)
+    if not drawn:
+        ax.text(0.5, 0.5, "no positive finite errors to plot", ha="center", va="center", transform=ax.transAxes,
+                fontsize=7, color="tab:red")
+    else:
+        _data_ticks(ax.yaxis, all_errors)
+        ax.legend(fontsize=6, loc="best")
+    return png_bytes(fig)
+
+
 def _result(metric):
     if metric["pass"]:
         return "PASS"
@@ -207,6 +236,11 @@ def problem_figures(record):
                         f"{pid}: error of each scalar check (numbered as in the check table) over its tolerance, on "
                         "a log scale; the dashed line at 1 is the pass rule's limit, a bar past it fails. An upper "
                         "bound met with room to spare (vdec below the bound) is hatched."})
+    for k, figure in enumerate(record.get("work_precision") or [], start=1):
+        figures.append({"name": f"{pid}-work-precision{k}.png", "png": work_precision_figure(figure), "wide": False,
+                        "caption": f"{pid}: work-precision, {figure['title']}: the error of each check against the "
+                                   "wall seconds of the run it reads (set-up included), one line per method; the "
+                                   "lower and further left, the better."})
     study = record.get("convergence")
     if study is not None:
         figures.append({"name": f"{pid}-convergence.png", "png": study_figure(study), "wide": True, "caption":

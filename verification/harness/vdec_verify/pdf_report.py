@@ -310,7 +310,7 @@ KNOWN_HARNESS = {"git_commit", "git_dirty", "version", "date", "host", "python",
                  "software_consistent", "software_disagreements"}
 KNOWN_SUMMARY = {"schema", "software", "harness", "counts", "problems"}
 KNOWN_PROBLEM = {"id", "title", "requirements", "level", "status", "metrics", "runs", "wall_seconds", "cycles",
-                 "scene_sha256", "exit_code", "message", "messages", "convergence", "mutations"}
+                 "scene_sha256", "exit_code", "message", "messages", "convergence", "mutations", "work_precision"}
 KNOWN_METRIC = {"quantity", "variant", "extract", "norm", "rtol", "atol", "error", "tolerance", "pass", "numerical",
                 "reference", "justification", "message", "plot", "level"}
 

@@ -72,6 +72,14 @@ Keys of problem.toml:
     level = "base"                "base" or "full" (default "full"): a base suite (--level base) runs the
                                   base levels, a full suite all levels
 
+    [[work_precision]]            optional: a figure of error against wall time comparing methods
+    title = "..."                 required: what is compared
+    series = [{ label = "Crank-Nicolson", checks = [1, 2] }, { label = "explicit", checks = [3] }]
+                                  required, one or more: each series a method, its points the listed
+                                  [[check]] tables (numbered 1, 2, ... in the file's order), each drawn at
+                                  its error and at the wall seconds of the run it reads; the checks use
+                                  norm scalar, L2 or Linf and are not the studied check.
+
 Rules of a study (each broken rule is a ProblemError naming the key):
   - exactly one [[check]] has refinement = true when there is a [refinement] table, and none
     when there is not; the studied check names no variant and uses norm scalar, L2 or Linf
@@ -112,7 +120,7 @@ DEFAULT_TIMEOUT_SECONDS = 600.0
 # Files the runner writes in a run folder; a variant's folder sits beside them.
 RUN_FILES = ("results.json", "command.txt", "stdout.txt", "stderr.txt")
 
-PROBLEM_KEYS = ("id", "title", "requirements", "scene", "level", "overrides", "expect_exit", "expect_stop",
+PROBLEM_KEYS = ("id", "title", "requirements", "scene", "level", "overrides", "expect_exit", "expect_stop", "work_precision",
                 "timeout_seconds", "variant", "refinement", "check", "mutation")
 # Tables planned for later work: named here so that using one says so rather than "unknown key".
 PLANNED_KEYS = {}
@@ -217,6 +225,13 @@ class Refinement:
         return tuple(lv for lv in self.levels if suite_level == "full" or lv.level == "base")
 
 
+@dataclass(frozen=True)
+class WorkPrecision:
+    """A [[work_precision]] figure: series (label, indices of the checks drawn) of error against wall time."""
+    title: str
+    series: tuple        # of (label, tuple of check indices from 0)
+
+
 @dataclass
 class Problem:
     id: str
@@ -230,6 +245,7 @@ class Problem:
     timeout_seconds: float
     refinement: Refinement = None
     mutations: tuple = ()
+    work_precision: tuple = ()   # of WorkPrecision
 
     @property
     def folder(self):
@@ -722,11 +738,53 @@ def load_problem(path):
                                                       for lv in refinement.levels))
         runs += [lv.run for lv in refinement.levels]
     mutations = _mutations(errors, data, [run.name for run in runs])
+    work_precision = _work_precision(errors, data.get("work_precision", []), checks)
     if scene is not None:
         _check_cycle_bounds(errors, scene, runs, checks)
     errors.raise_any()
     return Problem(problem_id, title, list(requirements), path, scene, level, runs, checks, float(timeout),
-                   refinement, mutations)
+                   refinement, mutations, work_precision)
+
+
+def _work_precision(errors, raw, checks):
+    """The [[work_precision]] tables as WorkPrecision records (errors recorded)."""
+    if not isinstance(raw, list) or not all(isinstance(t, dict) for t in raw):
+        errors.add("work_precision", "must be an array of tables [[work_precision]]")
+        return ()
+    figures = []
+    for i, table in enumerate(raw):
+        where = f"work_precision[{i}]"
+        _check_unknown(errors, table, ("title", "series"), f"{where}.")
+        if not _is_text(table.get("title")):
+            errors.add(f"{where}.title", "is required: what the figure compares")
+        series = table.get("series")
+        if not isinstance(series, list) or not series or not all(isinstance(s, dict) for s in series):
+            errors.add(f"{where}.series", "must be one or more tables { label = \"...\", checks = [N, ...] }")
+            continue
+        kept = []
+        for j, s in enumerate(series):
+            at = f"{where}.series[{j}]"
+            _check_unknown(errors, s, ("label", "checks"), f"{at}.")
+            if not _is_text(s.get("label")):
+                errors.add(f"{at}.label", "is required: the method the series shows")
+            numbers = s.get("checks")
+            if not isinstance(numbers, list) or not numbers:
+                errors.add(f"{at}.checks", "must be a list of [[check]] numbers (1 = the first)")
+                continue
+            indices = []
+            for n in numbers:
+                if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= len(checks):
+                    errors.add(f"{at}.checks", f"{n!r} is not a [[check]] number from 1 to {len(checks)}")
+                    continue
+                check = checks[n - 1]
+                if check.refinement or check.norm not in STUDY_NORMS:
+                    errors.add(f"{at}.checks", f"check {n} is not drawn against time: the checks of a work-precision "
+                                               f"figure use norm {', '.join(STUDY_NORMS)} and are not the studied check")
+                    continue
+                indices.append(n - 1)
+            kept.append((s.get("label", ""), tuple(indices)))
+        figures.append(WorkPrecision(table.get("title", ""), tuple(kept)))
+    return tuple(figures)
 
 
 def _cycle_limit(scene, overrides):

@@ -49,6 +49,8 @@ def public_record(record):
     kept["metrics"] = [{k: v for k, v in m.items() if k != "plot"} for m in record["metrics"]]
     if record.get("convergence") is not None:   # optional: only problems with a [refinement] study
         kept["convergence"] = record["convergence"]
+    if record.get("work_precision") is not None:  # optional: only problems with [[work_precision]] figures
+        kept["work_precision"] = record["work_precision"]
     if record.get("mutations") is not None:     # only when the suite ran the mutations (level full)
         kept["mutations"] = record["mutations"]
     return _finite_or_none(kept)

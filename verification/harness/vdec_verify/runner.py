@@ -24,7 +24,7 @@ from pathlib import Path
 from vdec_verify.convergence import convergence_study
 from vdec_verify.extract import ExtractError, Series, extract
 from vdec_verify.norms import ReferenceProblem, compare, evaluate_reference
-from vdec_verify.problem import RUN_FILES, ProblemError, find_reference_function, load_problem
+from vdec_verify.problem import PLAIN_RUN_LABEL, RUN_FILES, ProblemError, find_reference_function, load_problem
 from vdec_verify.provenance import hashes, problem_inputs, software_of
 
 RESULTS_SCHEMA = "vdec.results/1"
@@ -402,6 +402,26 @@ def judge_mutation(problem, mutation, outcomes, mutated, level):
     return record
 
 
+def work_precision_records(problem, metrics, outcomes):
+    """The points of the problem's [[work_precision]] figures: per series, each check's error and
+    the wall seconds of the run it read."""
+    metric_of, k = {}, 0
+    for check in problem.checks:
+        metric_of[check.index] = metrics[k]
+        k += 2 if check.refinement else 1   # a studied check adds its order metric
+    figures = []
+    for figure in problem.work_precision:
+        series = []
+        for label, indices in figure.series:
+            points = [{"check": i + 1, "run": problem.checks[i].variant or PLAIN_RUN_LABEL,
+                       "error": metric_of[i]["error"], "pass": metric_of[i]["pass"],
+                       "wall_seconds": outcomes[problem.checks[i].variant].wall_seconds} for i in indices]
+            series.append({"label": label, "points": points})
+        figures.append({"title": figure.title, "norm": problem.checks[figure.series[0][1][0]].norm
+                        if figure.series and figure.series[0][1] else "", "series": series})
+    return figures
+
+
 def judge(entry, outcomes, level="full", mutation_outcomes=None):
     """The record of one problem (see report.write_summary for the fields kept); level is the
     suite's level ("base" or "full"), which decides the refinement levels that ran.
@@ -428,6 +448,8 @@ def judge(entry, outcomes, level="full", mutation_outcomes=None):
     record["metrics"], convergence, problems = judge_checks(problem, problem.checks, outcomes, level)
     if convergence is not None:
         record["convergence"] = convergence
+    if problem.work_precision:
+        record["work_precision"] = work_precision_records(problem, record["metrics"], outcomes)
     messages += problems
     invalid = bool(problems)
     failing = [m for m in record["metrics"] if not m["pass"]]
