@@ -1,4 +1,7 @@
-// Throughput of the rigid-block cycle on lattices of square blocks resting on a fixed base.
+// Throughput of the rigid-block cycle on lattices of square blocks resting on a fixed base, and of
+// the same lattices of simply-deformable blocks (SimplyDeformableLattice: the rock elastic, E = 10
+// GPa, nu = 0.25; docs/models/simply-deformable.md), whose cost per block-cycle the rigid one's
+// measures.
 //
 // Each lattice is columns x rows blocks of 1 m x 1 m (density 2500 kg/m^3), stacked in a plain
 // grid (no bond), touching, on a fixed base block 1 m thick spanning the width; Coulomb-slip joints
@@ -48,7 +51,7 @@ vdec::BlockDefinition square(const std::string& name, vdec::Vec2 low, vdec::Vec2
   return b;
 }
 
-vdec::Scene buildLattice(int columns, int rows) {
+vdec::Scene buildLattice(int columns, int rows, bool strained) {
   vdec::SceneDefinition s;
   s.title = "benchmark lattice " + std::to_string(columns) + " x " + std::to_string(rows);
   s.model.gravity = {0.0, -9.81};
@@ -58,6 +61,7 @@ vdec::Scene buildLattice(int columns, int rows) {
   vdec::BlockMaterial& rock = s.blockMaterials.emplace_back().material;
   rock.name = "rock";
   rock.density = 2500.0;
+  if (strained) rock.bulk = 10e9 / 1.5, rock.shear = 4e9;
   vdec::JointMaterial joint;
   joint.name = "joint";
   joint.law = vdec::JointLaw::CoulombSlip;
@@ -67,9 +71,11 @@ vdec::Scene buildLattice(int columns, int rows) {
   s.blocks.push_back(square("base", {0.0, -1.0}, {static_cast<double>(columns), 0.0}));
   s.blocks.back().fix = vdec::DriveAll;
   for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < columns; ++c)
+    for (int c = 0; c < columns; ++c) {
       s.blocks.push_back(square("b" + std::to_string(c) + "_" + std::to_string(r), {static_cast<double>(c), 1.0 * r},
                                 {c + 1.0, r + 1.0}));
+      s.blocks.back().simplyDeformable = strained;
+    }
   return vdec::buildScene(std::move(s));
 }
 
@@ -79,11 +85,11 @@ int closedContacts(const vdec::Model& m) {
   return n;
 }
 
-void RunLattice(benchmark::State& state) {
+void RunLattice(benchmark::State& state, bool strained) {
   const int columns = static_cast<int>(state.range(0)), rows = static_cast<int>(state.range(1));
   const long long blocks = static_cast<long long>(columns) * rows;
   const long long cycles = state.range(2);
-  const vdec::Scene scene = buildLattice(columns, rows);
+  const vdec::Scene scene = buildLattice(columns, rows, strained);
 
   vdec::Model model;
   std::optional<vdec::Cycle> cycle;
@@ -160,8 +166,16 @@ void RunLattice(benchmark::State& state) {
 
 void RigidLattice(benchmark::State& state) {
   try {
-    RunLattice(state);
+    RunLattice(state, false);
   } catch (const std::exception& e) {  // scene or geometry errors: report, go on with the next size
+    state.SkipWithError(e.what());
+  }
+}
+
+void SimplyDeformableLattice(benchmark::State& state) {
+  try {
+    RunLattice(state, true);
+  } catch (const std::exception& e) {
     state.SkipWithError(e.what());
   }
 }
@@ -171,14 +185,20 @@ void RigidLattice(benchmark::State& state) {
 // the rounding length even with the dynamic overshoot of gravity applied at once. Cycles per
 // iteration: a tenth of a second to a second or two each, and few enough that every timed window
 // (settling plus one iteration) stays early in the undamped run.
-BENCHMARK(RigidLattice)
-    ->Args({20, 5, 2000})
-    ->Args({50, 20, 500})
-    ->Args({200, 50, 200})
-    ->ArgNames({"columns", "rows", "cycles"})
-    ->Iterations(kIterations)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
+void LatticeSizes(benchmark::internal::Benchmark* b) {
+  b->Args({20, 5, 2000})
+      ->Args({50, 20, 500})
+      ->Args({200, 50, 200})
+      ->ArgNames({"columns", "rows", "cycles"})
+      ->Iterations(kIterations)
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond);
+}
+
+// The same lattices and cycles for both kinds of block, so that their costs per block-cycle
+// compare directly.
+BENCHMARK(RigidLattice)->Apply(LatticeSizes);
+BENCHMARK(SimplyDeformableLattice)->Apply(LatticeSizes);
 
 }  // namespace
 

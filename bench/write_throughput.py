@@ -5,7 +5,9 @@ usage: write_throughput.py BENCHMARK_JSON OUTPUT_JSON
 
 The output names the machine (CPU model from /proc/cpuinfo, logical CPUs, compiler, build type,
 commit), gives the rigid-block headline figures at 10 000 blocks (contact_cycle_ns,
-block_cycle_ns) and, in "lattices", every lattice's figures with its per-stage split. For the
+block_cycle_ns) and, in "lattices", every lattice's figures with its per-stage split, with
+"simply_deformable_over_rigid" the best cost per block-cycle of each lattice of simply-deformable
+blocks over the rigid lattice's of its size. For the
 deformable-block benchmark (ElasticZones) it gives the headline figures at 99 856 zones
 (zone_cycle_ns on one thread, zone_cycle_ns_two_threads) and, in "zone_meshes", every size and
 thread count with its per-stage split and, at two threads, the speed-up over one. A run that
@@ -150,7 +152,13 @@ def main(argv):
         if m["threads"] != 1 and one is not None and m["zone_cycle_ns"]:
             m["speedup_vs_one_thread"] = round(one / m["zone_cycle_ns"], 2)
     zone_ns = zone_figure(meshes, HEADLINE_ZONES, 1)
-    headline = next((e for e in lattices if e["blocks"] == HEADLINE_BLOCKS), None)
+    headline = next((e for e in lattices if e["blocks"] == HEADLINE_BLOCKS and e["name"].startswith("RigidLattice")), None)
+    # Each simply-deformable lattice's best cost per block-cycle over the rigid lattice's of its size.
+    strained = []
+    for e in lattices:
+        rigid = next((r for r in lattices if r["name"].startswith("RigidLattice") and r["blocks"] == e["blocks"]), None)
+        if e["name"].startswith("SimplyDeformableLattice") and rigid and rigid["best_block_cycle_ns"] and e["best_block_cycle_ns"]:
+            strained.append({"blocks": e["blocks"], "ratio": round(e["best_block_cycle_ns"] / rigid["best_block_cycle_ns"], 3)})
     contact_ns = headline["contact_cycle_ns"] if headline else None
     out = {
         "machine": {
@@ -172,6 +180,7 @@ def main(argv):
         "target_contact_cycle_ns": TARGET_CONTACT_CYCLE_NS,
         "meets_target": (contact_ns is not None and contact_ns < TARGET_CONTACT_CYCLE_NS),
         "lattices": lattices,
+        "simply_deformable_over_rigid": strained,
         "zone_headline_zones": HEADLINE_ZONES,
         "zone_cycle_ns": zone_ns,
         "zone_cycle_ns_two_threads": zone_figure(meshes, HEADLINE_ZONES, 2),

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "contact/contact_geometry.hpp"
+#include "contact/strained_outline.hpp"
 #include "core/errors.hpp"
 #include "joint/joint_laws.hpp"
 
@@ -69,6 +70,7 @@ void addPointForce(Model& m, const BlockPoint& p, Vec2 f) {
 ContactStepTotals computeContactForces(Model& m, double dt, double motionClock, double beta) {
   ContactStepTotals totals;
   Blocks& bl = m.blocks;
+  const bool strained = m.strainModes.size() > 0;
   const double overlapLimit = 0.5 * m.roundingLength;
   for (std::size_t i = 0; i < m.contacts.size(); ++i) {
     Contact& c = m.contacts[i];
@@ -104,8 +106,14 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock, 
     // of two material points and a uniform strain shared by both sides shears no joint.
     const Vec2 facing = pa.onGridpoints() ? m.vertices.geometry[c.corner].position : hit.point;
     const BlockPoint pb = outlines ? featurePoint(m, hit, facing) : BlockPoint{};
-    const Vec2 va = pa.onGridpoints() ? pointVelocity(m, pa) : bl.velocity[a] + bl.angularVelocity[a] * perp(ra);
-    const Vec2 vb = pb.onGridpoints() ? pointVelocity(m, pb) : bl.velocity[b] + bl.angularVelocity[b] * perp(rb);
+    Vec2 va = pa.onGridpoints() ? pointVelocity(m, pa) : bl.velocity[a] + bl.angularVelocity[a] * perp(ra);
+    Vec2 vb = pb.onGridpoints() ? pointVelocity(m, pb) : bl.velocity[b] + bl.angularVelocity[b] * perp(rb);
+    // A simply-deformable block's contact point moves with its strain too, and loads its strains.
+    StrainModes& modes = m.strainModes;
+    const int ka = strained ? modes.of[a] : -1, kb = strained ? modes.of[b] : -1;
+    const Vec2 Xa = ka >= 0 ? bodyPoint(modes, ka, ra) : Vec2{}, Xb = kb >= 0 ? bodyPoint(modes, kb, rb) : Vec2{};
+    if (ka >= 0) va += strainVelocityAt(modes, ka, Xa);
+    if (kb >= 0) vb += strainVelocityAt(modes, kb, Xb);
     const Vec2 tangent{hit.normal.y, -hit.normal.x};
     const double dus = dot(va - vb, tangent) * dt;
 
@@ -166,12 +174,14 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock, 
     } else {
       bl.force[a] += f;
       bl.moment[a] += cross(ra, f);
+      if (ka >= 0) addStrainForceAt(modes, ka, Xa, f);
     }
     if (pb.onGridpoints()) {
       addPointForce(m, pb, -f);
     } else {
       bl.force[b] -= f;
       bl.moment[b] -= cross(rb, f);
+      if (kb >= 0) addStrainForceAt(modes, kb, Xb, -f);
     }
 
     if (!c.open) {

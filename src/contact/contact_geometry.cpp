@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "contact/deformable_outline.hpp"
+#include "contact/strained_outline.hpp"
 
 namespace vdec {
 
@@ -127,6 +128,10 @@ void computeBoundaryGeometry(Model& m) {
 void placeBlockVertices(Model& m, int b) {
   if (m.blocks.deformable[b]) {
     placeOutlineVertices(m, b);
+    return;
+  }
+  if (!m.strainModes.of.empty() && m.strainModes.of[b] >= 0) {
+    placeStrainedVertices(m, b);
     return;
   }
   const double c = std::cos(m.blocks.rotation[b]), s = std::sin(m.blocks.rotation[b]);

@@ -11,6 +11,7 @@
 #include "bem/far_field_state.hpp"
 #include "boundary/time_function.hpp"
 #include "flow/flow_state.hpp"
+#include "motion/strain_modes_state.hpp"
 #include "structure/structure_state.hpp"
 #include "thermal/heat_state.hpp"
 #include "zone/mohr_coulomb.hpp"
@@ -366,6 +367,7 @@ struct Model {
   Structures structures;  // beams and their ties to the rock
   BoundaryElementField boundaryElements;  // the far field beyond the outer boundary, when the scene has one
   HeatField heat;  // conduction in the zones, when the scene has a [heat] table
+  StrainModes strainModes;  // the simply-deformable blocks' strains
   // The outline edges of deformable blocks (outer boundaries and holes), each directed with the
   // block on its left: gridpoints from -> to.
   struct BoundaryEdge {
@@ -387,6 +389,7 @@ struct Model {
     std::fill(gridpoints.contactForce.begin(), gridpoints.contactForce.end(), Vec2{});
     std::fill(gridpoints.tractionForce.begin(), gridpoints.tractionForce.end(), Vec2{});
     std::fill(gridpoints.dashpotForce.begin(), gridpoints.dashpotForce.end(), Vec2{});
+    std::fill(strainModes.force.begin(), strainModes.force.end(), Sym2{});
   }
   bool hasYieldingJoints() const {
     for (const JointMaterial& j : jointMaterials)

@@ -124,11 +124,17 @@ void visitState(A& a, HeatField& h) {
   a(h.convectionAmbient), a(h.radiationNode), a(h.radiationCoefficient), a(h.radiationAmbient), a(h.zoneTemperature), a(h.stored), a(h.sources), a(h.boundary), a(h.fixedInflow);
 }
 template <class A>
+void visitState(A& a, StrainModes& s) {
+  a(s.of), a(s.block), a(s.area), a(s.strain), a(s.strainRate), a(s.stress), a(s.szz), a(s.turn), a(s.inverseStretch);
+  a(s.force), a(s.massInverse);
+  a(s.strainMassInverse), a(s.mass);
+}
+template <class A>
 void visitState(A& a, Model& m) {
   a(m.blockMaterials), a(m.jointMaterials), a(m.blocks), a(m.vertices), a(m.gridpoints), a(m.zones);
   a(m.gridpointZones.start), a(m.gridpointZones.slot), a(m.loadedEdges), a(m.drivenVelocities);
   a(m.boundaryConditions), a(m.viscousEdges), a(m.rigidViscousEdges), a(m.freeFields), a(m.initialWaves);
-  a(m.timeFunctions), a(m.flow), a(m.structures), a(m.boundaryElements), a(m.heat), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
+  a(m.timeFunctions), a(m.flow), a(m.structures), a(m.boundaryElements), a(m.heat), a(m.strainModes), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
   a(m.defaultJoint), a(m.gravity), a(m.roundingLength), a(m.contactTolerance), a(m.time), a(m.cycle);
 }
 

@@ -38,6 +38,22 @@ double polarSecondMoment(const Polygon& p) {
   return j / 12.0;
 }
 
+SecondMoments secondMoments(const Polygon& p) {
+  const Vec2 c = centroid(p);
+  SecondMoments j;
+  for (std::size_t i = 0, n = p.size(); i < n; ++i) {
+    const Vec2 u = p[i] - c, v = p[(i + 1) % n] - c;
+    const double w = cross(u, v);
+    j.xx += w * (u.x * u.x + u.x * v.x + v.x * v.x);
+    j.yy += w * (u.y * u.y + u.y * v.y + v.y * v.y);
+    j.xy += w * (u.x * v.y + 2.0 * u.x * u.y + 2.0 * v.x * v.y + v.x * u.y);
+  }
+  j.xx /= 12.0;
+  j.yy /= 12.0;
+  j.xy /= 24.0;
+  return j;
+}
+
 namespace {
 
 bool segmentsCross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {

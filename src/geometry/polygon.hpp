@@ -15,6 +15,11 @@ double signedArea(const Polygon& p);
 Vec2 centroid(const Polygon& p);
 // Second moment of area about the centroid, J = int (x^2 + y^2) dA; inertia = density * J.
 double polarSecondMoment(const Polygon& p);
+// The second moments of area about the centroid: int x^2 dA, int y^2 dA and int x y dA.
+struct SecondMoments {
+  double xx = 0.0, yy = 0.0, xy = 0.0;
+};
+SecondMoments secondMoments(const Polygon& p);
 
 // Throws GeometryError naming `what` (e.g. "block 'top'") when the polygon has fewer than
 // three vertices, zero area, clockwise order, a self-intersection, a reflex (concave) corner,

@@ -70,6 +70,15 @@ ZoningDefinition readZoning(TableReader& r) {
   return z;
 }
 
+// kind = "rigid" (the default) or "simply-deformable".
+bool readKind(TableReader& r) {
+  const std::string kind = r.string("kind", "rigid");
+  if (kind != "rigid" && kind != "simply-deformable")
+    r.fail("kind", "unknown block kind '" + kind + "': \"rigid\" or \"simply-deformable\" (a block with zoning is "
+                   "fully deformable)");
+  return kind == "simply-deformable";
+}
+
 BlockDefinition readBlock(TableReader& r) {
   BlockDefinition d;
   d.origin = r.origin();
@@ -77,6 +86,9 @@ BlockDefinition readBlock(TableReader& r) {
   d.material = r.string("material");
   d.zoning = readZoning(r);
   if (d.zoning.kind != ZoningDefinition::Kind::Annulus) d.vertices = r.polygon("vertices");
+  if (r.has("kind") && d.zoning.kind != ZoningDefinition::Kind::Rigid)
+    r.fail("kind", "a zoned block is fully deformable: give kind to a block without zoning (or remove the zoning)");
+  d.simplyDeformable = readKind(r);
   if (d.zoning.kind != ZoningDefinition::Kind::Rigid) {
     for (const char* key : {"fix", "velocity", "angular_velocity", "force", "moment", "velocity_history"})
       if (r.has(key)) r.fail(key, "a deformable block is loaded and held through [[boundary]] tables, not block keys");
@@ -103,6 +115,7 @@ RegionDefinition readRegion(TableReader& r) {
   region.name = r.string("name");
   d.material = r.string("material");
   region.boundary = r.polygon("vertices");
+  d.simplyDeformable = readKind(r);
   if (r.has("seed")) {
     const long long seed = r.integer("seed");
     if (seed < 0) r.fail("seed", "must be >= 0");

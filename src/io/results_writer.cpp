@@ -10,6 +10,7 @@
 #include <numbers>
 #include <nlohmann/json.hpp>
 
+#include "motion/strain_modes.hpp"
 #include "bem/far_field.hpp"
 #include "contact/contact_geometry.hpp"
 #include "flow/fracture_flow.hpp"
@@ -413,6 +414,14 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                       {"velocity", {bl.velocity[b].x, bl.velocity[b].y}},
                       {"angular_velocity", bl.angularVelocity[b]}});
     if (bl.excavated(b)) blocks.back()["excavated"] = true;
+    if (!m.strainModes.of.empty() && m.strainModes.of[b] >= 0) {
+      const int k = m.strainModes.of[b];
+      double szz = 0.0;
+      const Sym2 e = inWorldAxes(m, b, m.strainModes.strain[k]), s = inWorldAxes(m, b, presentStress(m, b, szz));
+      blocks.back()["kind"] = "simply-deformable";
+      blocks.back()["strain"] = {{"xx", e.xx}, {"yy", e.yy}, {"xy", e.xy}};
+      blocks.back()["stress"] = {{"xx", s.xx}, {"yy", s.yy}, {"xy", s.xy}, {"zz", szz}};
+    }
   }
   j["blocks"] = blocks;
   json contacts = json::array();

@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "motion/strain_modes.hpp"
 #include "contact/contact_geometry.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
@@ -76,17 +77,25 @@ Grid collect(const Model& m) {
   const Blocks& b = m.blocks;
   for (int k = 0; k < b.size(); ++k) {
     if (b.deformable[k] || b.excavated(k)) continue;
+    const bool strained = !m.strainModes.of.empty() && m.strainModes.of[k] >= 0;
     std::vector<int> cell;
     for (int v = b.firstVertex[k]; v < b.firstVertex[k] + b.vertexCount[k]; ++v) {
       cell.push_back(static_cast<int>(g.points.size()));
       g.points.push_back(m.vertices.geometry[v].position);
       // Where the vertex started: the block's first centroid plus the vertex at zero rotation.
       g.displacement.push_back(m.vertices.geometry[v].position - (b.initialCentroid[k] + m.vertices.localPosition[v]));
-      g.velocity.push_back(b.velocity[k] + b.angularVelocity[k] * perp(m.vertices.geometry[v].position - b.centroid[k]));
+      const Vec2 r = m.vertices.geometry[v].position - b.centroid[k];
+      g.velocity.push_back(b.velocity[k] + b.angularVelocity[k] * perp(r) + (strained ? strainVelocity(m, k, r) : Vec2{}));
     }
     g.cells.push_back(cell);
     g.types.push_back(kPolygon);
     cellDefaults(g, 1, k);
+    if (strained) {
+      // A simply-deformable block's uniform stress, in the world's axes.
+      double szz = 0.0;
+      const Sym2 s = inWorldAxes(m, k, presentStress(m, k, szz));
+      g.sxx.back() = s.xx, g.syy.back() = s.yy, g.sxy.back() = s.xy, g.szz.back() = szz;
+    }
   }
   for (const Contact& c : m.contacts) {
     pointCell(g, contactGeometry(m, c).point, 2, c.blockA);

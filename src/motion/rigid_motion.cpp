@@ -6,6 +6,7 @@
 
 #include "contact/contact_geometry.hpp"
 #include "core/errors.hpp"
+#include "motion/strain_modes.hpp"
 
 namespace vdec {
 
@@ -66,6 +67,19 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha, double 
     double unbalanced = 0.0;
     const Vec2 v{advance(driven & DriveX, bl.velocity[b].x, mass, bl.force[b].x, body.x, dashpot.x, unbalanced),
                  advance(driven & DriveY, bl.velocity[b].y, mass, bl.force[b].y, body.y, dashpot.y, unbalanced)};
+    if (!m.strainModes.of.empty() && m.strainModes.of[b] >= 0) {
+      // Rotation and strain share a mass matrix: they advance together (a simply-deformable block
+      // has no dashpots: the scene refuses viscous boundaries with it).
+      bl.velocity[b] = v;
+      bl.centroid[b] += dt * v;
+      advanceStrainModes(m, b, dt, alpha, local, bodyMoment, unbalanced, totals);
+      placeBlockVertices(m, b);
+      const StrainModes& s = m.strainModes;
+      const Sym2& rate = s.strainRate[s.of[b]];
+      const double straining = std::abs(rate.xx) + std::abs(rate.yy) + 2.0 * std::abs(rate.xy);
+      totals.largestDisplacement = std::max(totals.largestDisplacement, (norm(v) + (std::abs(bl.angularVelocity[b]) + straining) * bl.boundingRadius[b]) * dt);
+      continue;
+    }
     double momentUnbalanced = 0.0;
     const double w = advance(driven & DriveRotation, bl.angularVelocity[b], bl.inertia[b], bl.moment[b], bodyMoment,
                              dashpotMoment, momentUnbalanced);

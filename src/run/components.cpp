@@ -10,6 +10,7 @@
 #include "flow/fracture_flow.hpp"
 #include "motion/gridpoint_motion.hpp"
 #include "motion/rigid_motion.hpp"
+#include "motion/strain_modes.hpp"
 #include "run/component.hpp"
 #include "structure/beams.hpp"
 #include "structure/bolts.hpp"
@@ -96,7 +97,17 @@ Component rigidMotion(RunContext& run) {
   bool anyFree = false;
   for (int b = 0; b < m.blocks.size(); ++b) anyFree = anyFree || m.blocks.movesFreely(b);
   Component c{"rigid-block-motion", {}, {}};
-  if (anyFree || m.zones.size() == 0) c.stepLimit = [&run] { return rigidBlockTimeStep(run.model, run.settings.frac); };
+  // A simply-deformable block's strains move even while its rigid motion is driven.
+  if (anyFree || m.zones.size() == 0)
+    c.stepLimit = [&run] {
+      return std::min(rigidBlockTimeStep(run.model, run.settings.frac), strainModeTimeStep(run.model, run.settings.frac));
+    };
+  else if (m.strainModes.size() > 0)
+    c.stepLimit = [&run] { return strainModeTimeStep(run.model, run.settings.frac); };
+  // Simply-deformable blocks: their stresses from the strains at the step's start (the step's
+  // force stages run before any motion).
+  if (m.strainModes.size() > 0)
+    c.stages.push_back({"strain-mode-stress", [&run] { run.step.strainEnergy += strainModeStress(run.model); }});
   c.stages.push_back({"rigid-block-motion",
                       [&run] {
                         run.step.merge(integrateRigidBlocks(run.model, run.dt, run.massDamping, run.settings.localDamping));

@@ -1,5 +1,6 @@
 #include "run/cycle.hpp"
 
+#include "motion/strain_modes.hpp"
 #include "flow/fracture_flow.hpp"
 #include "structure/beams.hpp"
 #include "structure/bolts.hpp"
@@ -541,6 +542,7 @@ void Cycle::beginPhase(const PhaseChanges& changes, const std::string& phaseName
     double removed = 0.0;
     for (int b = 0; b < bl.size(); ++b) {
       if (!bl.movesFreely(b)) continue;
+      if (!model_.strainModes.of.empty() && model_.strainModes.of[b] >= 0) removed += stopStrainRates(model_, b);
       removed += 0.5 * (bl.mass[b] * dot(bl.velocity[b], bl.velocity[b]) + bl.inertia[b] * bl.angularVelocity[b] * bl.angularVelocity[b]);
       bl.velocity[b] = {0.0, 0.0};
       bl.angularVelocity[b] = 0.0;
@@ -580,6 +582,7 @@ void Cycle::beginPhase(const PhaseChanges& changes, const std::string& phaseName
       for (std::array<RockHold, 2>& sides : model_.structures.crossings.side)
         for (RockHold& hold : sides)
           if (hold.zone < 0 && hold.block == b) hold.local = rotated(hold.local, c, s);
+      if (!model_.strainModes.of.empty() && model_.strainModes.of[b] >= 0) turnStrainFrame(model_, b);
       bl.rotation[b] = 0.0;
     }
     for (int i = 0; i < g.size(); ++i) g.initialPosition[i] = g.position[i];
@@ -655,7 +658,10 @@ void Cycle::changeRigidBlocks(const std::vector<RigidBlockChange>& changes) {
     double e = 0.0;
     if (dofs & DriveX) e += 0.5 * bl.mass[b] * bl.velocity[b].x * bl.velocity[b].x;
     if (dofs & DriveY) e += 0.5 * bl.mass[b] * bl.velocity[b].y * bl.velocity[b].y;
-    if (dofs & DriveRotation) e += 0.5 * bl.inertia[b] * bl.angularVelocity[b] * bl.angularVelocity[b];
+    if (dofs & DriveRotation)
+      e += !model_.strainModes.of.empty() && model_.strainModes.of[b] >= 0
+               ? rotationKineticEnergy(model_, b)
+               : 0.5 * bl.inertia[b] * bl.angularVelocity[b] * bl.angularVelocity[b];
     return e;
   };
   bool released = false;
@@ -769,6 +775,9 @@ void Cycle::excavateRigidBlocks(const ExcavationRegion& region) {
   // go with a rescan, which no longer pairs it with anything.
   double removed = 0.0;
   for (const int b : gone) {
+    // The strain modes' energy, with their coupling to the rotation, before the motion stops.
+    const bool strained = !model_.strainModes.of.empty() && model_.strainModes.of[b] >= 0;
+    if (strained) removed += releaseStrainModes(model_, b);
     const Vec2 v = bl.velocity[b];
     const double vx = (bl.driven[b] & DriveX) ? 0.0 : v.x, vy = (bl.driven[b] & DriveY) ? 0.0 : v.y;
     const double w = (bl.driven[b] & DriveRotation) ? 0.0 : bl.angularVelocity[b];
@@ -779,6 +788,7 @@ void Cycle::excavateRigidBlocks(const ExcavationRegion& region) {
     bl.velocityHistory[b] = -1;
     bl.appliedForce[b] = {0.0, 0.0};
     bl.appliedMoment[b] = 0.0;
+    if (strained) placeBlockVertices(model_, b);
   }
   for (const Contact& c : model_.contacts)
     if (bl.excavated(c.blockA) || bl.excavated(c.blockB)) removed += c.springEnergy;

@@ -1,6 +1,7 @@
 #include "run/history.hpp"
 
 #include "flow/fracture_flow.hpp"
+#include "motion/strain_modes.hpp"
 
 #include <algorithm>
 #include <numbers>
@@ -23,6 +24,12 @@ const std::vector<HistoryQuantityInfo>& historyQuantities() {
       {Q::BlockAccelerationY, "block.acceleration_y", S::Block, "m/s^2", "centroid acceleration y: the change of velocity over the step, at the step's start"},
       {Q::BlockReactionX, "block.reaction_x", S::Block, "N/m", "x force the block's drive adds to hold its velocity: minus the sum of the forces of the step on it (contacts, supports, fluid, gravity, applied loads); of a free block, minus its unbalanced force"},
       {Q::BlockReactionY, "block.reaction_y", S::Block, "N/m", "y force the block's drive adds, as block.reaction_x"},
+      {Q::BlockSxx, "block.sxx", S::Block, "Pa", "stress sxx of a simply-deformable block, tension positive"},
+      {Q::BlockSyy, "block.syy", S::Block, "Pa", "stress syy of a simply-deformable block, tension positive"},
+      {Q::BlockSxy, "block.sxy", S::Block, "Pa", "stress sxy of a simply-deformable block"},
+      {Q::BlockExx, "block.exx", S::Block, "-", "strain exx of a simply-deformable block, extension positive"},
+      {Q::BlockEyy, "block.eyy", S::Block, "-", "strain eyy of a simply-deformable block, extension positive"},
+      {Q::BlockExy, "block.exy", S::Block, "-", "tensor shear strain exy of a simply-deformable block (half the engineering shear)"},
       {Q::JointNormalForce, "joint.normal_force", S::Joint, "N/m", "sum of contact normal forces, compression positive"},
       {Q::JointShearForce, "joint.shear_force", S::Joint, "N/m", "sum of contact shear forces"},
       {Q::JointNormalStress, "joint.normal_stress", S::Joint, "Pa", "sum of normal forces / joint.length"},
@@ -239,6 +246,21 @@ double boltMeasure(const Model& m, const HistorySpec& h) {
   }
 }
 
+// A simply-deformable block's stress or strain in the world's axes, at the positions just reached.
+double strainMeasure(const Model& m, const HistorySpec& h) {
+  double szz = 0.0;
+  const bool stress = h.quantity == HistoryQuantity::BlockSxx || h.quantity == HistoryQuantity::BlockSyy ||
+                      h.quantity == HistoryQuantity::BlockSxy;
+  const Sym2 t = inWorldAxes(m, h.block, stress ? presentStress(m, h.block, szz) : m.strainModes.strain[m.strainModes.of[h.block]]);
+  switch (h.quantity) {
+    case HistoryQuantity::BlockSxx:
+    case HistoryQuantity::BlockExx: return t.xx;
+    case HistoryQuantity::BlockSyy:
+    case HistoryQuantity::BlockEyy: return t.yy;
+    default: return t.xy;
+  }
+}
+
 Vec2 blockReaction(const Model& m, int b) {
   const Blocks& bl = m.blocks;
   Vec2 total = bl.force[b] + bl.mass[b] * m.gravity + bl.appliedForce[b];
@@ -283,6 +305,12 @@ double sampleHistory(const Model& m, const HistorySpec& h, const Monitors& mon) 
     case HistoryQuantity::BlockAngularVelocity: return b.angularVelocity[h.block];
     case HistoryQuantity::BlockReactionX: return blockReaction(m, h.block).x;
     case HistoryQuantity::BlockReactionY: return blockReaction(m, h.block).y;
+    case HistoryQuantity::BlockSxx:
+    case HistoryQuantity::BlockSyy:
+    case HistoryQuantity::BlockSxy:
+    case HistoryQuantity::BlockExx:
+    case HistoryQuantity::BlockEyy:
+    case HistoryQuantity::BlockExy: return strainMeasure(m, h);
     case HistoryQuantity::UnbalancedRatio: return mon.unbalancedRatio;
     case HistoryQuantity::LargestUnbalancedForce: return mon.largestUnbalancedForce;
     case HistoryQuantity::KineticEnergy: return mon.kineticEnergy;

@@ -29,6 +29,7 @@ enum class HistoryQuantity {
   BoltAxialForce, BoltShearForce, BoltAxialDisplacement, BoltShearDisplacement,
   BlockReactionX, BlockReactionY,
   GridpointTemperature, HeatTime, HeatStored, HeatSources, HeatBoundary, HeatFixed, HeatFlow,
+  BlockSxx, BlockSyy, BlockSxy, BlockExx, BlockEyy, BlockExy,
 };
 
 

@@ -191,6 +191,9 @@ BoundaryCondition resolveBoundary(const BoundaryDefinition& d, Model& m) {
   } else {
     const int block = blockNamed(m, d.origin, "block", d.block);
     if (!m.blocks.deformable[block]) {
+      if (d.viscous && !m.strainModes.of.empty() && m.strainModes.of[block] >= 0)
+        d.origin.fail("block", "block '" + m.blocks.name[block] + "' is simply deformable: a viscous boundary's dashpots "
+                               "act on a rigid block's motion alone and would leave its strain without them");
       if (d.viscous) return rigidViscousBoundary(d, m, block);
       d.origin.fail("block", "block '" + m.blocks.name[block] + "' is rigid: [[boundary]] applies to deformable blocks, and "
                              "to rigid ones only as viscous = true; give a rigid block `fix`, `velocity` or `force` in "

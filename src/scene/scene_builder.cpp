@@ -14,6 +14,7 @@
 #include "core/setup_progress.hpp"
 #include "geometry/block_cutting.hpp"
 #include "geometry/polygon.hpp"
+#include "motion/strain_modes.hpp"
 #include "scene/build_parts.hpp"
 #include "core/shown.hpp"
 
@@ -30,6 +31,7 @@ struct BlockInput {
   Polygon polygon;
   std::optional<Mesh> mesh;  // a deformable block's zoning
   std::string where;         // for geometry errors
+  const Origin* simplyDeformable = nullptr;  // the table that made it simply deformable
 };
 
 // A block's area, mass and moment of inertia as formed from its shape and its material's
@@ -245,6 +247,7 @@ std::vector<BlockInput> blockInputs(Model& m, const SceneDefinition& s) {
       in.polygon = d.vertices;
       in.where = d.origin.file + ": block '" + d.name + "' (" + d.origin.prefix + ", line " +
                  std::to_string(d.origin.line) + ")";
+      if (d.simplyDeformable) in.simplyDeformable = &d.origin;
     }
     inputs.push_back(std::move(in));
   }
@@ -276,6 +279,7 @@ std::vector<BlockInput> blockInputs(Model& m, const SceneDefinition& s) {
       in.material = material;
       in.polygon = pieces[k];
       in.where = d.origin.file + ": block '" + in.name + "' cut from region '" + region.name + "' (" + d.origin.prefix + ")";
+      if (d.simplyDeformable) in.simplyDeformable = &d.origin;
       inputs.push_back(std::move(in));
     }
   }
@@ -398,6 +402,31 @@ void assignJoint(Model& m, const JointAssignmentDefinition& d) {
   m.jointAssignments.push_back({pair, index});
 }
 
+// What simply-deformable blocks do not take: loads that act on a rigid block's force and moment
+// alone would leave their strains without them.
+void checkStrainModeScene(const Model& m, const SceneDefinition& s, const Origin& origin) {
+  // A phase's new Mohr-Coulomb strength would make nothing of a simply-deformable block.
+  for (const PhaseDefinition& p : s.phases)
+    for (const BlockStrengthDefinition& d : p.blockStrengths)
+      for (int k = 0; k < m.strainModes.size(); ++k)
+        if (m.blockMaterials[m.blocks.material[m.strainModes.block[k]]].name == d.material)
+          d.origin.fail("name", "block material '" + d.material + "' is that of simply-deformable block '" +
+                                    m.blocks.name[m.strainModes.block[k]] + "', which is elastic: a Mohr-Coulomb "
+                                    "strength applies to zones");
+  auto anyPhase = [&s](auto has) { return std::any_of(s.phases.begin(), s.phases.end(), has); };
+  std::string what;
+  if (m.flow.present) what = "fluid pressures in the joints ([fluid])";
+  else if (s.boundaryElements || anyPhase([](const PhaseDefinition& p) { return p.boundaryElements.has_value(); }))
+    what = "a boundary-element far field";
+  else if (!s.beams.empty() || !s.cables.empty() || !s.bolts.empty() ||
+           anyPhase([](const PhaseDefinition& p) { return !p.beams.empty() || !p.cables.empty() || !p.bolts.empty(); }))
+    what = "beams, cables or bolts";
+  if (!what.empty())
+    origin.fail("kind", "simply-deformable blocks take the loads of contacts, gravity, block forces and moments and "
+                        "boundary velocities; this scene also has " + what + ", which act on a block's rigid motion "
+                        "alone and would leave its strain without them: make the block rigid or zone it");
+}
+
 HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::vector<Phase>& phases) {
   HistorySpec h;
   h.name = d.name;
@@ -419,6 +448,10 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
     if (m.blocks.deformable[h.block])
       d.origin.fail("block", "block '" + m.blocks.name[h.block] + "' is deformable: its motion is its gridpoints'; use "
                              "gridpoint.* or zone.* quantities with a point");
+    const bool strain = h.quantity >= HistoryQuantity::BlockSxx && h.quantity <= HistoryQuantity::BlockExy;
+    if (strain && (m.strainModes.of.empty() || m.strainModes.of[h.block] < 0))
+      d.origin.fail("block", "block '" + m.blocks.name[h.block] + "' is rigid: " + d.quantity + " is the stress or strain "
+                             "of a simply-deformable block (kind = \"simply-deformable\")");
   } else if (info->subject == HistorySubject::Fluid) {
     if (!m.flow.present) d.origin.fail("quantity", d.quantity + " is a fluid-flow quantity, and the scene has no [fluid] table");
     if (d.point) h.point = *d.point;
@@ -526,6 +559,7 @@ Scene buildScene(SceneDefinition s) {
 
   std::vector<BlockInput> inputs = blockInputs(m, s);
   for (const ExcavationDefinition& d : s.excavations) excavate(inputs, d);
+  std::vector<std::pair<int, const Origin*>> strained;  // the simply-deformable blocks
   for (const BlockInput& in : inputs) {
     if (in.mesh) {
       addDeformableBlock(m, in.name, in.material, *in.mesh);
@@ -533,6 +567,16 @@ Scene buildScene(SceneDefinition s) {
     }
     validateBlockPolygon(in.polygon, m.roundingLength, in.where);
     addRigidBlock(m, in);
+    if (in.simplyDeformable) {
+      if (!m.blockMaterials[in.material].elastic())
+        in.simplyDeformable->fail("material", "a simply-deformable block strains elastically: give block material '" +
+                                                  m.blockMaterials[in.material].name + "' young and poisson (or bulk and shear)");
+      if (m.blockMaterials[in.material].plastic)
+        in.simplyDeformable->fail("material", "a simply-deformable block is elastic, and block material '" +
+                                                  m.blockMaterials[in.material].name + "' has a Mohr-Coulomb strength, "
+                                                  "which applies to zones: zone the block, or give it an elastic material");
+      strained.emplace_back(m.blocks.size() - 1, in.simplyDeformable);
+    }
     if (in.definition && in.definition->velocityHistory) {
       m.timeFunctions.push_back(*in.definition->velocityHistory);
       m.blocks.velocityHistory.back() = static_cast<int>(m.timeFunctions.size()) - 1;
@@ -541,6 +585,8 @@ Scene buildScene(SceneDefinition s) {
   checkModelWide(m, s);
   if (m.blocks.size() > 1) attachDeformableOutlines(m);
   computeBoundaryGeometry(m);
+  for (const auto& [block, origin] : strained) addStrainModes(m, block);
+  if (!strained.empty()) m.strainModes.of.resize(m.blocks.size(), -1);
   for (int b = 0; b < m.blocks.size(); ++b) placeBlockVertices(m, b);
   addFluid(m, s);
   addStructures(m, s);
@@ -624,6 +670,7 @@ Scene buildScene(SceneDefinition s) {
                                              "nodes are formed once; excavate before the run with [[excavation]]");
     scene.settings.phases[k].changes.heatTime = d.heatTime.value_or(0.0);
   }
+  if (!strained.empty()) checkStrainModeScene(m, s, *strained.front().second);
   std::set<std::string> historyNames;
   for (const HistoryDefinition& d : s.histories) {
     if (!historyNames.insert(d.name).second) d.origin.fail("name", "history '" + d.name + "' is defined twice");

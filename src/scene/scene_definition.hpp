@@ -60,12 +60,14 @@ struct BlockDefinition {
   Vec2 velocity, force;
   double angularVelocity = 0.0, moment = 0.0;
   std::optional<TimeFunction> velocityHistory;  // scales the velocity of the fixed components
+  bool simplyDeformable = false;  // kind = "simply-deformable": rigid motion and uniform strain
   Origin origin;
 };
 
 struct RegionDefinition {
   RegionSpec region;  // cut into blocks named region.1, region.2, ...
   std::string material;
+  bool simplyDeformable = false;  // kind = "simply-deformable" for every block cut from it
   Origin origin;
 };
 

@@ -485,3 +485,43 @@ def test_bending_rejects_nonsense():
         sd.simply_deformable_cantilever_tip_deflection(**dict(BEAM, length=-5.0))
     with pytest.raises(ValueError):
         sd.simply_deformable_cantilever_tip_deflection(**dict(BEAM, load=math.inf))
+
+
+@REQ
+def test_column_energy_known_values_and_the_sum_of_its_blocks():
+    # H = 10, w = 1, rho g = 25 kPa/m, M = 1e10: the continuum holds 25e3^2 * 1000 / 6e10 = 10.41667 J/m;
+    # 5 blocks hold 1 - 1/100 of it, 10.3125 J/m; with joints of kn = 1e10 each holds F^2 / (2 kn),
+    # summed in the loop below.
+    U = sd.continuum_column_self_weight_strain_energy(height=10.0, width=1.0, rho=2500.0, g=10.0, modulus=1e10)
+    assert U == pytest.approx(10.416666666666666, rel=1e-12, abs=0)
+    blocks = sd.column_self_weight_strain_energy(height=10.0, width=1.0, n_blocks=5, rho=2500.0, g=10.0, modulus=1e10)
+    assert blocks == pytest.approx(10.3125, rel=1e-12, abs=0)
+    # The same from each block's mean stress, summed by hand in a loop, and the joints' springs.
+    h, total = 2.0, 0.0
+    for above in range(5):
+        stress = 25e3 * h * (above + 0.5)
+        total += h * stress ** 2 / 2e10 + (25e3 * h * (above + 1)) ** 2 / (2 * 1e10)
+    jointed = sd.column_self_weight_strain_energy(height=10.0, width=1.0, n_blocks=5, rho=2500.0, g=10.0,
+                                                  modulus=1e10, kn=1e10)
+    assert jointed == pytest.approx(total, rel=1e-12, abs=0)
+    # The blocks' shortfall is 1 / (4 n^2) of the continuum's at every n.
+    for n in (1, 2, 7, 40):
+        ratio = sd.column_self_weight_strain_energy(height=3.0, width=2.0, n_blocks=n, rho=2700.0, g=9.81,
+                                                    modulus=5e9) / sd.continuum_column_self_weight_strain_energy(
+            height=3.0, width=2.0, rho=2700.0, g=9.81, modulus=5e9)
+        assert ratio == pytest.approx(1.0 - 1.0 / (4 * n * n), rel=1e-12, abs=0)
+
+
+@REQ
+def test_settled_height_is_the_height_less_the_displacement():
+    # The top of a 10 m column (rho g = 25 kPa/m, M = 1e10, 5 blocks) settles rho g H^2 / (2M) = 1.25e-4 m.
+    y = sd.column_self_weight_settled_height(y=10.0, height=10.0, n_blocks=5, rho=2500.0, g=10.0, modulus=1e10)
+    assert y == pytest.approx(10.0 - 1.25e-4, rel=1e-14, abs=0)
+
+
+@REQ
+def test_the_first_period_is_the_inverse_of_the_first_frequency():
+    # The homogenised bar with kn h = M (H = 10, h = 2, M = 1e10, kn = 5e9): M_eff = M / 2 = 5e9,
+    # c = sqrt(5e9 / 2500) = 1414.21 m/s, f = c / (4 H) = 35.355 Hz, T = 0.028284 s.
+    T = sd.jointed_column_first_period(height=10.0, n_blocks=5, rho=2500.0, modulus=1e10, kn=5e9, blocks="continuum")
+    assert T == pytest.approx(4.0 * 10.0 / math.sqrt(5e9 / 2500.0), rel=1e-12, abs=0)

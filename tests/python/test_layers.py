@@ -29,7 +29,7 @@ LAYERS = {
 # Header-only value types that the model stores, and that include nothing of vdec's own: they
 # sit with their component but belong to the bottom layer.
 BOTTOM_LAYER_HEADERS = {"boundary/time_function.hpp", "bem/far_field_state.hpp", "thermal/heat_state.hpp", "zone/mohr_coulomb.hpp", "flow/flow_state.hpp",
-                        "structure/structure_state.hpp"}
+                        "structure/structure_state.hpp", "motion/strain_modes_state.hpp"}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/([^"]+)"', re.M)
 
 

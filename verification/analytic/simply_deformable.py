@@ -221,6 +221,41 @@ def column_self_weight_displacement(*, y, height, n_blocks, rho, g, modulus, kn=
     return blocks + closures
 
 
+def column_self_weight_settled_height(*, y, height, n_blocks, rho, g, modulus, kn=math.inf):
+    """The height to which the point of the simply-deformable column at initial height y settles:
+    y - column_self_weight_displacement(...) (the displacement is downward positive)."""
+    return _arr(y) - column_self_weight_displacement(y=y, height=height, n_blocks=n_blocks, rho=rho, g=g,
+                                                     modulus=modulus, kn=kn)
+
+
+def continuum_column_self_weight_strain_energy(*, height, width, rho, g, modulus):
+    """Elastic energy (J per metre of thickness) of the continuous column under its own weight: the
+    stress at y is rho g (H - y), the energy density its square over 2M, so
+    U = w integral_0^H (rho g (H - y))^2 / (2M) dy = rho^2 g^2 H^3 w / (6M)."""
+    H, w = _positive("height", height), _positive("width", width)
+    rho, g, M = _positive("rho", rho), _non_negative("g", g), _positive("modulus", modulus)
+    return rho * rho * g * g * H ** 3 * w / (6.0 * M)
+
+
+def column_self_weight_strain_energy(*, height, width, n_blocks, rho, g, modulus, kn=math.inf):
+    """Elastic energy (J per metre of thickness) of the simply-deformable column of
+    column_self_weight_displacement, width w: each block holds A sigma_j^2 / (2M) with A = h w and
+    sigma_j = rho g h (i - 1/2), i = n - j the blocks from the top down to it, and each joint
+    F_j^2 / (2 kn w) with F_j = rho g h w i. With sum_{i=1}^{n} (i - 1/2)^2 = n^3 / 3 - n / 12, the
+    blocks hold rho^2 g^2 H^3 w / (6M) (1 - 1 / (4 n^2)): a uniform stress per block misses the
+    energy of the stress's variation within it, so the blocks' energy falls short of the continuum's
+    (continuum_column_self_weight_strain_energy) by 1 / (4 n^2) of it, converging as h^2."""
+    H, w = _positive("height", height), _positive("width", width)
+    n = _count("n_blocks", n_blocks)
+    rho, g, M = _positive("rho", rho), _non_negative("g", g), _positive("modulus", modulus)
+    kn = _positive_or_inf("kn", kn)
+    h = H / n
+    i = np.arange(1, n + 1, dtype=float)
+    blocks = float(np.sum(h * w * (rho * g * h * (i - 0.5)) ** 2 / (2.0 * M)))
+    joints = 0.0 if math.isinf(kn) else float(np.sum((rho * g * h * w * i) ** 2 / (2.0 * kn * w)))
+    return blocks + joints
+
+
 # ---------------------------------------------------------------- a column's axial vibration
 
 
@@ -313,6 +348,12 @@ def jointed_column_first_frequency(*, height, n_blocks, rho, modulus, kn, blocks
     mass, stiffness = _simply_deformable_chain(n, h, rho, M, kn)
     w2 = scipy.linalg.eigh(stiffness, mass, eigvals_only=True, subset_by_index=[0, 0])[0]
     return math.sqrt(w2) / (2.0 * math.pi)
+
+
+def jointed_column_first_period(*, height, n_blocks, rho, modulus, kn, blocks="simply-deformable"):
+    """The period (s) of jointed_column_first_frequency's first mode, 1 / f."""
+    return 1.0 / jointed_column_first_frequency(height=height, n_blocks=n_blocks, rho=rho, modulus=modulus, kn=kn,
+                                                blocks=blocks)
 
 
 # ---------------------------------------------------------------- a long block in bending
