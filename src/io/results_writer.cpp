@@ -363,6 +363,8 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
               {"contact_detection_scans", report.detectionScans},
               {"static_solve_seconds", report.staticSolveSeconds >= 0 ? nlohmann::json(report.staticSolveSeconds) : nlohmann::json()},
               {"static_solve_residual", report.staticSolveResidual >= 0 ? nlohmann::json(report.staticSolveResidual) : nlohmann::json()},
+              {"static_solve_passes", report.staticSolvePasses},
+              {"static_solve_unknowns", report.staticSolveUnknowns},
               {"unbalanced_ratio", report.lastMonitors.unbalancedRatio},
               {"stage_seconds", profile}};
   if (report.stiffnessDampingStepFactor != 1.0) j["run"]["stiffness_damping_step_factor"] = report.stiffnessDampingStepFactor;

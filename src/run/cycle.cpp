@@ -101,6 +101,8 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
       const DirectSolveReport solved = solveStaticDirect(model_);
       staticSolveSeconds_ = solved.seconds;
       staticSolveResidual_ = solved.relativeResidual;
+      staticSolvePasses_ += solved.solves;
+      staticSolveUnknowns_ = solved.unknowns;
       // The solve moved the blocks without the detection's motion bounds: look again everywhere.
       if (hasContacts_) {
         std::vector<int> all(bl.size());
@@ -621,6 +623,8 @@ void Cycle::solveDirectly() {
   const DirectSolveReport solved = solveStaticDirect(model_);
   staticSolveSeconds_ = std::max(staticSolveSeconds_, 0.0) + solved.seconds;
   staticSolveResidual_ = solved.relativeResidual;
+  staticSolvePasses_ += solved.solves;
+  staticSolveUnknowns_ = solved.unknowns;
   energy_.supplyByDirectSolve(storedElasticEnergy() - before);
   // The solve moved the blocks without the detection's motion bounds: look again everywhere.
   if (hasContacts_) {
@@ -928,6 +932,8 @@ RunReport Cycle::run() {
   report.detectionScans = detection_.scans();
   report.staticSolveSeconds = staticSolveSeconds_;
   report.staticSolveResidual = staticSolveResidual_;
+  report.staticSolvePasses = staticSolvePasses_;
+  report.staticSolveUnknowns = staticSolveUnknowns_;
   report.stiffnessDampingStepFactor = stiffnessDampingStepFactor_;
   for (const Component& c : components_)
     if (c.stepLimit && std::isfinite(c.stepLimit())) report.stepLimits.emplace_back(c.name, c.stepLimit());

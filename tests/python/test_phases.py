@@ -366,6 +366,12 @@ require_equilibrium = true
     assert stored * (1 - deficit) <= energy["static_solve"] <= stored * (1 + 1e-5)
     assert energy["strain"] == pytest.approx(energy["static_solve"], rel=1e-9, abs=0)
     assert results["run"]["static_solve_seconds"] >= 0.0
+    # The solve and its passes: each pass on the configuration the one before reached, the last at
+    # round-off of the loads; two unknowns per free gridpoint, fewer than two per gridpoint (the
+    # base is held).
+    run_ = results["run"]
+    assert 1 <= run_["static_solve_passes"] <= 6 and run_["static_solve_residual"] < 1e-10
+    assert 0 < run_["static_solve_unknowns"] < 2 * len(results["gridpoints"]["x0"])
 
 
 @REQ
