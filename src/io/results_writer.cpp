@@ -364,6 +364,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
               {"static_solve_seconds", report.staticSolveSeconds >= 0 ? nlohmann::json(report.staticSolveSeconds) : nlohmann::json()},
               {"static_solve_residual", report.staticSolveResidual >= 0 ? nlohmann::json(report.staticSolveResidual) : nlohmann::json()},
               {"static_solve_passes", report.staticSolvePasses},
+              {"static_solve_factorisations", report.staticSolveFactorisations},
               {"static_solve_unknowns", report.staticSolveUnknowns},
               {"unbalanced_ratio", report.lastMonitors.unbalancedRatio},
               {"stage_seconds", profile}};

@@ -102,6 +102,7 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
       staticSolveSeconds_ = solved.seconds;
       staticSolveResidual_ = solved.relativeResidual;
       staticSolvePasses_ += solved.solves;
+      staticSolveFactorisations_ += solved.factorisations;
       staticSolveUnknowns_ = solved.unknowns;
       // The solve moved the blocks without the detection's motion bounds: look again everywhere.
       if (hasContacts_) {
@@ -624,6 +625,7 @@ void Cycle::solveDirectly() {
   staticSolveSeconds_ = std::max(staticSolveSeconds_, 0.0) + solved.seconds;
   staticSolveResidual_ = solved.relativeResidual;
   staticSolvePasses_ += solved.solves;
+  staticSolveFactorisations_ += solved.factorisations;
   staticSolveUnknowns_ = solved.unknowns;
   energy_.supplyByDirectSolve(storedElasticEnergy() - before);
   // The solve moved the blocks without the detection's motion bounds: look again everywhere.
@@ -933,6 +935,7 @@ RunReport Cycle::run() {
   report.staticSolveSeconds = staticSolveSeconds_;
   report.staticSolveResidual = staticSolveResidual_;
   report.staticSolvePasses = staticSolvePasses_;
+  report.staticSolveFactorisations = staticSolveFactorisations_;
   report.staticSolveUnknowns = staticSolveUnknowns_;
   report.stiffnessDampingStepFactor = stiffnessDampingStepFactor_;
   for (const Component& c : components_)

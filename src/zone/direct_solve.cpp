@@ -73,10 +73,21 @@ std::vector<JointSpring> jointSprings(const Model& m) {
 constexpr int kMaxSolves = 6;
 constexpr double kResidualTolerance = 1e-12;
 
+// The factorised stiffness of an earlier solve. The later solves correct what the configuration
+// reached leaves unbalanced, a residual of the order of the strains times the loads; the first
+// solve's stiffness differs from theirs by as little, so solving with its factor converges as
+// fast, and a factorisation, the solve's costliest part, is made once. It is made again when the
+// joints that carry springs change (one opened or closed in a solve).
+struct StiffnessFactor {
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  std::vector<int> springContacts;
+  int unknowns = -1;
+};
+
 // One linear solve on the current configuration; returns the norm of the residual it solved for
 // and the scale of the forces (loads or zone forces), and adds the largest displacement to
 // `report`.
-std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
+std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report, StiffnessFactor& factor) {
   Gridpoints& g = m.gridpoints;
   Zones& zn = m.zones;
   // Unknowns: the free components; driven ones must be held still.
@@ -103,8 +114,13 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
     if (unknown[2 * i + 1] >= 0) f[unknown[2 * i + 1]] += load.y;
   }
   const Eigen::VectorXd external = f;
+  // Joints between the blocks: springs on the relative displacement at each closed contact.
+  const std::vector<JointSpring> springs = jointSprings(m);
+  std::vector<int> springContacts;
+  for (const JointSpring& js : springs) springContacts.push_back(js.contact);
+  const bool assemble = factor.unknowns != count || factor.springContacts != springContacts;
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(36 * static_cast<std::size_t>(zn.size()));
+  if (assemble) entries.reserve(36 * static_cast<std::size_t>(zn.size()));
   for (int z = 0; z < zn.size(); ++z) {
     const auto& n = zn.gridpoint[z];
     const ShapeGradients s = gradients(g.position[n[0]], g.position[n[1]], g.position[n[2]]);
@@ -135,7 +151,7 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
       double fk = 0.0;
       for (int q = 0; q < 3; ++q) fk -= s.area * B[q][k] * sigma[q];
       f[dof[k]] += fk;
-      for (int l = 0; l < 6; ++l) {
+      for (int l = 0; assemble && l < 6; ++l) {
         if (dof[l] < 0) continue;
         double kkl = 0.0;
         for (int q = 0; q < 3; ++q) kkl += B[q][k] * DB[q][l];
@@ -143,9 +159,8 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
       }
     }
   }
-  // Joints between the blocks: springs on the relative displacement at each closed contact, and
-  // the force of their present stresses (on A, f = fn n - fs t; on B its opposite, shared).
-  const std::vector<JointSpring> springs = jointSprings(m);
+  // The joints' springs, and the force of their present stresses (on A, f = fn n - fs t; on B its
+  // opposite, shared).
   for (const JointSpring& js : springs) {
     const Contact& c = m.contacts[js.contact];
     const double w = contactWeight(m.jointMaterials[c.joint], c);
@@ -160,7 +175,7 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
         const int row = unknown[2 * js.gridpoint[p] + r];
         if (row < 0) continue;
         f[row] += js.coefficient[p] * (r == 0 ? force.x : force.y);
-        for (int q = 0; q < 3; ++q) {
+        for (int q = 0; assemble && q < 3; ++q) {
           if (js.gridpoint[q] < 0) continue;
           for (int t = 0; t < 2; ++t) {
             const int col = unknown[2 * js.gridpoint[q] + t];
@@ -173,7 +188,7 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
   // The far field's stiffness on its nodes, each node's displacement the weighted mean of its
   // gridpoints' (the solve refuses rigid blocks, so every point of the interface is a gridpoint).
   const BoundaryElementField& be = m.boundaryElements;
-  for (int i = 0; be.on && i < be.size(); ++i)
+  for (int i = 0; assemble && be.on && i < be.size(); ++i)
     for (int j = 0; j < be.size(); ++j)
       for (int p = be.firstMember[i]; p < be.firstMember[i + 1]; ++p)
         for (int q = be.firstMember[j]; q < be.firstMember[j + 1]; ++q) {
@@ -185,21 +200,26 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report) {
                 entries.emplace_back(row, col, share * be.stiffness[static_cast<std::size_t>(2 * i + r) * (2 * be.size()) + 2 * j + t]);
             }
         }
-  Eigen::SparseMatrix<double> K(count, count);
-  K.setFromTriplets(entries.begin(), entries.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(K);
-  bool held = solver.info() == Eigen::Success;
-  if (held) {
-    // A stiffness with rigid-body modes factors with (near) zero pivots: reject those.
-    const Eigen::VectorXd pivots = solver.vectorD();
-    const double largest = pivots.cwiseAbs().maxCoeff();
-    held = pivots.minCoeff() > 1e-12 * largest;
+  if (assemble) {
+    Eigen::SparseMatrix<double> K(count, count);
+    K.setFromTriplets(entries.begin(), entries.end());
+    factor.ldlt.compute(K);
+    bool held = factor.ldlt.info() == Eigen::Success;
+    if (held) {
+      // A stiffness with rigid-body modes factors with (near) zero pivots: reject those.
+      const Eigen::VectorXd pivots = factor.ldlt.vectorD();
+      const double largest = pivots.cwiseAbs().maxCoeff();
+      held = pivots.minCoeff() > 1e-12 * largest;
+    }
+    if (!held)
+      throw SceneError("solver.static_solve: the zones are not held against rigid-body motion (the stiffness "
+                       "is singular); fix more gridpoint components, or check that every block is held or joined "
+                       "to one that is by closed joints");
+    factor.unknowns = count;
+    factor.springContacts = std::move(springContacts);
+    ++report.factorisations;
   }
-  if (!held)
-    throw SceneError("solver.static_solve: the zones are not held against rigid-body motion (the stiffness "
-                     "is singular); fix more gridpoint components, or check that every block is held or joined "
-                     "to one that is by closed joints");
-  const Eigen::VectorXd u = solver.solve(f);
+  const Eigen::VectorXd u = factor.ldlt.solve(f);
   // Apply: stresses take the elastic increment of du on the configuration it was solved on.
   report.unknowns = count;
   for (int z = 0; z < zn.size(); ++z) {
@@ -288,9 +308,10 @@ DirectSolveReport solveStaticDirect(Model& m) {
   // linear solve does not. Solving again on the configuration reached removes that remainder
   // (the stiffness lacks only the geometric terms, so each solve gains about as many digits as
   // the strains are small) until the residual is at round-off of the loads.
+  StiffnessFactor factor;
   for (int k = 0; k < kMaxSolves; ++k) {
     ++report.solves;
-    const auto [residual, scale] = solveOnce(m, report);
+    const auto [residual, scale] = solveOnce(m, report, factor);
     report.relativeResidual = scale > 0.0 ? residual / scale : 0.0;
     if (!(residual > kResidualTolerance * scale)) break;
   }

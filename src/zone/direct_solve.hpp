@@ -12,6 +12,7 @@ namespace vdec {
 struct DirectSolveReport {
   int unknowns = 0;
   int solves = 0;  // on successive configurations, until the residual is at round-off
+  int factorisations = 0;  // of the stiffness: once, and again when the joints carrying springs change
   double relativeResidual = 0.0;  // of the last solve's right-hand side, over the force scale
   double seconds = 0.0;
   double largestDisplacement = 0.0;

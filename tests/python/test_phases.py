@@ -371,6 +371,7 @@ require_equilibrium = true
     # base is held).
     run_ = results["run"]
     assert 1 <= run_["static_solve_passes"] <= 6 and run_["static_solve_residual"] < 1e-10
+    assert run_["static_solve_factorisations"] == 1   # the later passes solve with the first factor
     assert 0 < run_["static_solve_unknowns"] < 2 * len(results["gridpoints"]["x0"])
 
 
