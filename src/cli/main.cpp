@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/scene_check.hpp"
 #include "run/cycle.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
@@ -197,6 +198,11 @@ int main(int argc, char** argv) {
                   "write the state after these phases (comma-separated names) to DIR/after-phase-K.vdecstate")
       ->delimiter(',');
   run->add_option("--restart", options.restart, "continue the scene's phases from a state file written by --save");
+  std::string checkPath;
+  std::vector<std::string> checkOverrides;
+  CLI::App* check = app.add_subcommand("check", "read and build a scene and print what a run would do, without running it");
+  check->add_option("scene", checkPath, "scene file (TOML)")->required();
+  check->add_option("--set", checkOverrides, "override a scene key, as for run (repeatable)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -206,6 +212,7 @@ int main(int argc, char** argv) {
   // From here a signal stops the run between two steps, with the results so far written.
   vdec::installInterruptHandlers();
   try {
+    if (check->parsed()) return vdec::checkScene(checkPath, checkOverrides);
     return runScene(options);
   } catch (const vdec::Error& e) {
     std::fprintf(stderr, "vdec: error: %s\n", e.what());

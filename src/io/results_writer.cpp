@@ -22,8 +22,6 @@
 
 namespace vdec {
 
-namespace {
-
 const char* jointLawName(JointLaw law) {
   switch (law) {
     case JointLaw::PointContact: return "point-contact";
@@ -33,6 +31,8 @@ const char* jointLawName(JointLaw law) {
   }
   return "?";
 }
+
+namespace {
 
 // Where and when the file was written: provenance that differs between two runs of one scene,
 // kept apart from the results so that comparing two runs can drop it in one place.

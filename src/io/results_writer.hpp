@@ -25,6 +25,9 @@ struct RunEnvironment {
 
 // Writes dir/results.json under a temporary name renamed over it (io/atomic_file.hpp), creating
 // dir. Throws OutputError naming the path on failure.
+// A joint law as the scene names it (`law` of [[joint_material]]).
+const char* jointLawName(JointLaw law);
+
 void writeResults(const std::string& dir, const Scene& scene, const RunReport& report, double setupSeconds,
                   const RunEnvironment& environment);
 

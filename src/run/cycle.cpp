@@ -923,11 +923,9 @@ RunReport Cycle::run() {
   report.cycles = model_.cycle;
   report.time = model_.time;
   report.dt = dt_;
-  for (const Stage& s : stages_) {
-    if (!s.listed) continue;
-    report.stages.push_back(s.name);
-    report.profile.push_back({s.name, s.seconds});
-  }
+  report.stages = stageNames();
+  for (const Stage& s : stages_)
+    if (s.listed) report.profile.push_back({s.name, s.seconds});
   report.histories = histories_;
   report.energy = energy_.report();
   report.lastMonitors = monitors_;
@@ -938,10 +936,23 @@ RunReport Cycle::run() {
   report.staticSolveFactorisations = staticSolveFactorisations_;
   report.staticSolveUnknowns = staticSolveUnknowns_;
   report.stiffnessDampingStepFactor = stiffnessDampingStepFactor_;
-  for (const Component& c : components_)
-    if (c.stepLimit && std::isfinite(c.stepLimit())) report.stepLimits.emplace_back(c.name, c.stepLimit());
+  report.stepLimits = stepLimits();
   report.wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
   return report;
+}
+
+std::vector<std::string> Cycle::stageNames() const {
+  std::vector<std::string> names;
+  for (const Stage& s : stages_)
+    if (s.listed) names.push_back(s.name);
+  return names;
+}
+
+std::vector<std::pair<std::string, double>> Cycle::stepLimits() const {
+  std::vector<std::pair<std::string, double>> limits;
+  for (const Component& c : components_)
+    if (c.stepLimit && std::isfinite(c.stepLimit())) limits.emplace_back(c.name, c.stepLimit());
+  return limits;
 }
 
 }  // namespace vdec

@@ -81,6 +81,10 @@ class Cycle {
   // report.error and report.errorCode set, so that the histories up to it can still be written.
   RunReport run();
   double timeStep() const { return dt_; }
+  // The stages of a step as the scene needs them, in order (the step's own bookkeeping left out).
+  std::vector<std::string> stageNames() const;
+  // Each component's largest stable step (s) on the present state, before the damping reductions.
+  std::vector<std::pair<std::string, double>> stepLimits() const;
   // The stop of the next run() of a scene without phases, counted from where that run starts: a
   // caller that runs on in windows (the benchmarks) sets each window's length.
   void setStop(const StopCriteria& stop) { settings_.stop = stop; }

@@ -269,3 +269,35 @@ def test_mass_damping_past_two_over_the_step_is_an_input_error(tmp_path):
     assert "give at most" in done.stderr
     done, _ = run(tmp_path, text, "--set", "solver.mass_damping=1000", "--set", "stop.cycles=10")
     assert done.returncode == 0, done.stderr  # alpha dt = 1 at dt = 1e-3 s: heavy but valid
+
+
+@pytest.mark.requirements("REQ-IO-012")
+def test_check_prints_what_a_run_would_do_without_running(tmp_path):
+    # The column of SD-COLUMN-FREQUENCY, zoned: check builds it and prints its blocks, zones,
+    # contacts, time step and stages, the same step and stages the run then takes, and writes nothing.
+    scene = ROOT / "verification" / "problems" / "SD-COLUMN-FREQUENCY" / "zoned.toml"
+    done = subprocess.run([VDEC, "check", str(scene)], capture_output=True, text=True, timeout=120, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert "blocks 9: 1 rigid, 0 simply-deformable, 8 zoned; 0 free to move" in lines
+    assert "zones 128, gridpoints 104" in lines
+    assert "run: stop at time 0.2 s" in lines
+    assert list(tmp_path.iterdir()) == []
+    ran = subprocess.run([VDEC, "run", str(scene), "--out", str(tmp_path / "out"), "--set", "stop.time=0.001"],
+                         capture_output=True, text=True, timeout=120)
+    assert ran.returncode == 0, ran.stderr
+    results = json.loads((tmp_path / "out" / "results.json").read_text())
+    step = next(float(l.split()[2]) for l in lines if l.startswith("time step "))
+    assert step == pytest.approx(results["run"]["dt"], rel=1e-5, abs=0)   # printed with six digits
+    assert next(l for l in lines if l.startswith("stages ")) == "stages " + ", ".join(results["run"]["stages"])
+
+
+@pytest.mark.requirements("REQ-IO-012")
+def test_check_refuses_a_bad_scene_as_a_run_does(tmp_path):
+    scene = tmp_path / "scene.toml"
+    scene.write_text(SCENE)
+    done = subprocess.run([VDEC, "check", str(scene), "--set", "solver.frac=-1"], capture_output=True, text=True, timeout=60)
+    ran = subprocess.run([VDEC, "run", str(scene), "--out", str(tmp_path / "out"), "--set", "solver.frac=-1"],
+                         capture_output=True, text=True, timeout=60)
+    assert done.returncode == ran.returncode == 3
+    assert "solver.frac" in done.stderr and done.stderr == ran.stderr
