@@ -825,9 +825,17 @@ double Cycle::stepLimitOf(std::string_view component) const {
 
 void Cycle::stepUntil(const StopCriteria& stop, std::string& reason) {
   const bool progress = settings_.progress && isatty(STDERR_FILENO);
-  auto lastPrint = Clock::now();
+  const auto started = Clock::now();
+  auto lastPrint = started;
   const long long startCycle = model_.cycle;
   const double startTime = model_.time;
+  // The share of the way to a cycle or time limit done, whichever comes first; a ratio gives none.
+  auto done = [&]() {
+    double share = 0.0;
+    if (stop.cycles > 0) share = std::max(share, static_cast<double>(model_.cycle - startCycle) / static_cast<double>(stop.cycles));
+    if (stop.time > 0) share = std::max(share, (model_.time - startTime) / stop.time);
+    return share;
+  };
   while (!stopReached(stop, startCycle, startTime, reason)) {
     // Between two steps, where the state is whole: a signal ends the run here (core/interrupt).
     if (const int requested = interruptSignal(); requested != 0) {
@@ -848,16 +856,21 @@ void Cycle::stepUntil(const StopCriteria& stop, std::string& reason) {
     if (progress && (model_.cycle & 255) == 0) {
       const auto now = Clock::now();
       if (now - lastPrint > std::chrono::milliseconds(250)) {
-        printProgress(false);
+        const double share = done(), elapsed = std::chrono::duration<double>(now - started).count();
+        printProgress(false, share > 0.0 ? elapsed * (1.0 - share) / share : -1.0);
         lastPrint = now;
       }
     }
   }
 }
 
-void Cycle::printProgress(bool final) const {
-  std::fprintf(stderr, "\rcycle %lld  time %.6g s  ratio %.3e  contacts %zu%s", model_.cycle, model_.time,
-               monitors_.unbalancedRatio, model_.contacts.size(), final ? "\n" : "");
+void Cycle::printProgress(bool final, double left) const {
+  char estimate[48] = "";
+  if (left >= 0.0) std::snprintf(estimate, sizeof estimate, "  left %.0f s", std::ceil(left));
+  // Padded, so that a shorter line rewritten in place leaves nothing of the longer one before it.
+  std::fprintf(stderr, "\rcycle %lld  time %.6g s  ratio %.3e  energy error %.1e  contacts %zu%s    %s", model_.cycle,
+               model_.time, monitors_.unbalancedRatio, energy_.balanceError(), model_.contacts.size(), estimate,
+               final ? "\n" : "");
   std::fflush(stderr);
 }
 

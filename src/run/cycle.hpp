@@ -137,7 +137,8 @@ class Cycle {
   double storedElasticEnergy() const;
   void changeRigidBlocks(const std::vector<RigidBlockChange>& changes);
   void closePhase(PhaseReport& done, std::chrono::steady_clock::time_point started) const;
-  void printProgress(bool final) const;
+  // The status line; `left` the wall seconds estimated to the stop (negative: none to give).
+  void printProgress(bool final, double left = -1.0) const;
 
   Model& model_;
   RunSettings settings_;

@@ -78,6 +78,14 @@ class EnergyLedger {
   }
 
   double mechanical() const { return terms_.kinetic + terms_.strain; }
+  // The account's error as it stands after the last step: the energy held (kinetic + strain) and
+  // spent (dissipated by damping, dashpots, slip and plasticity, released by joints) less the
+  // energy supplied, over the largest energy supplied so far; round-off for a closed account.
+  double balanceError() const {
+    const double spent = terms_.dampingDissipation + terms_.boundaryDissipation + terms_.slipDissipation +
+                         terms_.jointRelease + terms_.plasticDissipation;
+    return largestSupplied_ > 0.0 ? (mechanical() + spent - supplied_) / largestSupplied_ : 0.0;
+  }
   double kinetic() const { return terms_.kinetic; }
   double strain() const { return terms_.strain; }
   double supplied() const { return supplied_; }

@@ -1,5 +1,6 @@
 """The vdec executable end to end: exit codes, diagnostics and repeatable results."""
 import json
+import re
 import os
 import subprocess
 from pathlib import Path
@@ -301,3 +302,43 @@ def test_check_refuses_a_bad_scene_as_a_run_does(tmp_path):
                          capture_output=True, text=True, timeout=60)
     assert done.returncode == ran.returncode == 3
     assert "solver.frac" in done.stderr and done.stderr == ran.stderr
+
+
+def lattice(columns, rows, cycles):
+    """Rigid square blocks stacked on a fixed base under gravity, undamped, stopped on cycles."""
+    text = """[model]
+rounding = 0.01
+gravity = [0.0, -9.81]
+[[block_material]]
+name = "rock"
+density = 2500.0
+[[joint_material]]
+name = "joint"
+kn = 1e9
+ks = 1e9
+friction = 30.0
+[[block]]
+name = "base"
+material = "rock"
+vertices = [[0.0, -1.0], [%d.0, -1.0], [%d.0, 0.0], [0.0, 0.0]]
+fix = ["x", "y", "rotation"]
+""" % (columns, columns)
+    for r in range(rows):
+        for c in range(columns):
+            text += (f'[[block]]\nname = "b{c}_{r}"\nmaterial = "rock"\n'
+                     f'vertices = [[{c}.0, {r}.0], [{c + 1}.0, {r}.0], [{c + 1}.0, {r + 1}.0], [{c}.0, {r + 1}.0]]\n')
+    return text + f"[stop]\ncycles = {cycles}\n"
+
+
+@pytest.mark.requirements("REQ-IO-005")
+def test_the_progress_line_shows_the_energy_error_and_the_time_left_to_a_cycle_limit(tmp_path):
+    # 1 000 blocks for 6 000 cycles (a few seconds): the line is rewritten every 0.25 s with the
+    # energy error and, the run having a cycle limit, the seconds left; the last line, at the
+    # stop, has nothing left to estimate.
+    code, terminal = run_with_terminal(tmp_path, lattice(50, 20, 6000))
+    assert code == 0, terminal
+    lines = [line for line in terminal.replace("\r\n", "\n").split("\r") if line.strip()]
+    assert len(lines) >= 3, terminal
+    assert all(re.search(r"energy error -?\d\.\de[+-]\d+", line) for line in lines), terminal
+    assert all(re.search(r"left \d+ s", line) for line in lines[:-1]), terminal
+    assert "cycle 6000 " in lines[-1] and "left" not in lines[-1]
