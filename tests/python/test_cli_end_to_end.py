@@ -272,7 +272,7 @@ def test_mass_damping_past_two_over_the_step_is_an_input_error(tmp_path):
     assert done.returncode == 0, done.stderr  # alpha dt = 1 at dt = 1e-3 s: heavy but valid
 
 
-@pytest.mark.requirements("REQ-IO-012")
+@pytest.mark.requirements("REQ-IO-013")
 def test_check_prints_what_a_run_would_do_without_running(tmp_path):
     # The column of SD-COLUMN-FREQUENCY, zoned: check builds it and prints its blocks, zones,
     # contacts, time step and stages, the same step and stages the run then takes, and writes nothing.
@@ -293,7 +293,7 @@ def test_check_prints_what_a_run_would_do_without_running(tmp_path):
     assert next(l for l in lines if l.startswith("stages ")) == "stages " + ", ".join(results["run"]["stages"])
 
 
-@pytest.mark.requirements("REQ-IO-012")
+@pytest.mark.requirements("REQ-IO-013")
 def test_check_refuses_a_bad_scene_as_a_run_does(tmp_path):
     scene = tmp_path / "scene.toml"
     scene.write_text(SCENE)
