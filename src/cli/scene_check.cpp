@@ -56,7 +56,7 @@ int checkScene(const std::string& path, const std::vector<std::string>& override
   int rigid = 0, free = 0, strained = 0, zoned = 0;
   for (int b = 0; b < m.blocks.size(); ++b) {
     if (m.blocks.deformable[b]) ++zoned;
-    else if (!m.strainModes.of.empty() && m.strainModes.of[b] >= 0) ++strained;
+    else if (m.strainModes.holds(b)) ++strained;
     else ++rigid;
     if (m.blocks.movesFreely(b)) ++free;
   }

@@ -130,7 +130,7 @@ void placeBlockVertices(Model& m, int b) {
     placeOutlineVertices(m, b);
     return;
   }
-  if (!m.strainModes.of.empty() && m.strainModes.of[b] >= 0) {
+  if (m.strainModes.holds(b)) {
     placeStrainedVertices(m, b);
     return;
   }

@@ -417,7 +417,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
                       {"velocity", {bl.velocity[b].x, bl.velocity[b].y}},
                       {"angular_velocity", bl.angularVelocity[b]}});
     if (bl.excavated(b)) blocks.back()["excavated"] = true;
-    if (!m.strainModes.of.empty() && m.strainModes.of[b] >= 0) {
+    if (m.strainModes.holds(b)) {
       const int k = m.strainModes.of[b];
       double szz = 0.0;
       const Sym2 e = inWorldAxes(m, b, m.strainModes.strain[k]), s = inWorldAxes(m, b, presentStress(m, b, szz));

@@ -77,7 +77,7 @@ Grid collect(const Model& m) {
   const Blocks& b = m.blocks;
   for (int k = 0; k < b.size(); ++k) {
     if (b.deformable[k] || b.excavated(k)) continue;
-    const bool strained = !m.strainModes.of.empty() && m.strainModes.of[k] >= 0;
+    const bool strained = m.strainModes.holds(k);
     std::vector<int> cell;
     for (int v = b.firstVertex[k]; v < b.firstVertex[k] + b.vertexCount[k]; ++v) {
       cell.push_back(static_cast<int>(g.points.size()));

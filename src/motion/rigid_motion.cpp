@@ -67,7 +67,7 @@ MotionStepTotals integrateRigidBlocks(Model& m, double dt, double alpha, double 
     double unbalanced = 0.0;
     const Vec2 v{advance(driven & DriveX, bl.velocity[b].x, mass, bl.force[b].x, body.x, dashpot.x, unbalanced),
                  advance(driven & DriveY, bl.velocity[b].y, mass, bl.force[b].y, body.y, dashpot.y, unbalanced)};
-    if (!m.strainModes.of.empty() && m.strainModes.of[b] >= 0) {
+    if (m.strainModes.holds(b)) {
       // Rotation and strain share a mass matrix: they advance together (a simply-deformable block
       // has no dashpots: the scene refuses viscous boundaries with it).
       bl.velocity[b] = v;

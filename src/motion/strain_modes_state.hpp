@@ -37,6 +37,8 @@ struct StrainModes {
   std::vector<std::array<double, 9>> strainMassInverse;
   std::vector<std::array<double, 16>> mass;
   int size() const { return static_cast<int>(block.size()); }
+  // Whether block b is simply deformable (`of` is empty in a scene without such blocks).
+  bool holds(int b) const { return !of.empty() && of[b] >= 0; }
 };
 
 }  // namespace vdec

@@ -545,7 +545,7 @@ void Cycle::beginPhase(const PhaseChanges& changes, const std::string& phaseName
     double removed = 0.0;
     for (int b = 0; b < bl.size(); ++b) {
       if (!bl.movesFreely(b)) continue;
-      if (!model_.strainModes.of.empty() && model_.strainModes.of[b] >= 0) removed += stopStrainRates(model_, b);
+      if (model_.strainModes.holds(b)) removed += stopStrainRates(model_, b);
       removed += 0.5 * (bl.mass[b] * dot(bl.velocity[b], bl.velocity[b]) + bl.inertia[b] * bl.angularVelocity[b] * bl.angularVelocity[b]);
       bl.velocity[b] = {0.0, 0.0};
       bl.angularVelocity[b] = 0.0;
@@ -585,7 +585,7 @@ void Cycle::beginPhase(const PhaseChanges& changes, const std::string& phaseName
       for (std::array<RockHold, 2>& sides : model_.structures.crossings.side)
         for (RockHold& hold : sides)
           if (hold.zone < 0 && hold.block == b) hold.local = rotated(hold.local, c, s);
-      if (!model_.strainModes.of.empty() && model_.strainModes.of[b] >= 0) turnStrainFrame(model_, b);
+      if (model_.strainModes.holds(b)) turnStrainFrame(model_, b);
       bl.rotation[b] = 0.0;
     }
     for (int i = 0; i < g.size(); ++i) g.initialPosition[i] = g.position[i];
@@ -665,7 +665,7 @@ void Cycle::changeRigidBlocks(const std::vector<RigidBlockChange>& changes) {
     if (dofs & DriveX) e += 0.5 * bl.mass[b] * bl.velocity[b].x * bl.velocity[b].x;
     if (dofs & DriveY) e += 0.5 * bl.mass[b] * bl.velocity[b].y * bl.velocity[b].y;
     if (dofs & DriveRotation)
-      e += !model_.strainModes.of.empty() && model_.strainModes.of[b] >= 0
+      e += model_.strainModes.holds(b)
                ? rotationKineticEnergy(model_, b)
                : 0.5 * bl.inertia[b] * bl.angularVelocity[b] * bl.angularVelocity[b];
     return e;
@@ -782,7 +782,7 @@ void Cycle::excavateRigidBlocks(const ExcavationRegion& region) {
   double removed = 0.0;
   for (const int b : gone) {
     // The strain modes' energy, with their coupling to the rotation, before the motion stops.
-    const bool strained = !model_.strainModes.of.empty() && model_.strainModes.of[b] >= 0;
+    const bool strained = model_.strainModes.holds(b);
     if (strained) removed += releaseStrainModes(model_, b);
     const Vec2 v = bl.velocity[b];
     const double vx = (bl.driven[b] & DriveX) ? 0.0 : v.x, vy = (bl.driven[b] & DriveY) ? 0.0 : v.y;

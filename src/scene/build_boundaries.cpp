@@ -191,7 +191,7 @@ BoundaryCondition resolveBoundary(const BoundaryDefinition& d, Model& m) {
   } else {
     const int block = blockNamed(m, d.origin, "block", d.block);
     if (!m.blocks.deformable[block]) {
-      if (d.viscous && !m.strainModes.of.empty() && m.strainModes.of[block] >= 0)
+      if (d.viscous && m.strainModes.holds(block))
         d.origin.fail("block", "block '" + m.blocks.name[block] + "' is simply deformable: a viscous boundary's dashpots "
                                "act on a rigid block's motion alone and would leave its strain without them");
       if (d.viscous) return rigidViscousBoundary(d, m, block);

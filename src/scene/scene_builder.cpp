@@ -449,7 +449,7 @@ HistorySpec buildHistory(const Model& m, const HistoryDefinition& d, const std::
       d.origin.fail("block", "block '" + m.blocks.name[h.block] + "' is deformable: its motion is its gridpoints'; use "
                              "gridpoint.* or zone.* quantities with a point");
     const bool strain = h.quantity >= HistoryQuantity::BlockSxx && h.quantity <= HistoryQuantity::BlockExy;
-    if (strain && (m.strainModes.of.empty() || m.strainModes.of[h.block] < 0))
+    if (strain && !m.strainModes.holds(h.block))
       d.origin.fail("block", "block '" + m.blocks.name[h.block] + "' is rigid: " + d.quantity + " is the stress or strain "
                              "of a simply-deformable block (kind = \"simply-deformable\")");
   } else if (info->subject == HistorySubject::Fluid) {
@@ -586,7 +586,6 @@ Scene buildScene(SceneDefinition s) {
   if (m.blocks.size() > 1) attachDeformableOutlines(m);
   computeBoundaryGeometry(m);
   for (const auto& [block, origin] : strained) addStrainModes(m, block);
-  if (!strained.empty()) m.strainModes.of.resize(m.blocks.size(), -1);
   for (int b = 0; b < m.blocks.size(); ++b) placeBlockVertices(m, b);
   addFluid(m, s);
   addStructures(m, s);
