@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/python_tools.hpp"
 #include "cli/scene_check.hpp"
 #include "run/cycle.hpp"
 #include "core/errors.hpp"
@@ -203,11 +204,23 @@ int main(int argc, char** argv) {
   CLI::App* check = app.add_subcommand("check", "read and build a scene and print what a run would do, without running it");
   check->add_option("scene", checkPath, "scene file (TOML)")->required();
   check->add_option("--set", checkOverrides, "override a scene key, as for run (repeatable)");
+  // Their own options are parsed by the Python programs (`vdec plot --help`).
+  CLI::App* plot = app.add_subcommand("plot", "draw a run's results (geometry, joints, forces, stresses, histories)");
+  CLI::App* sweep = app.add_subcommand("sweep", "run a scene over a product of --set values or seeds, locally or on Slurm");
+  for (CLI::App* tool : {plot, sweep}) {
+    tool->prefix_command();
+    tool->allow_extras();
+    tool->set_help_flag();
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : static_cast<int>(vdec::ExitCode::Usage);
+  }
+  if (plot->parsed() || sweep->parsed()) {
+    CLI::App* tool = plot->parsed() ? plot : sweep;
+    return vdec::runPythonTool(tool->get_name(), tool->remaining());
   }
   // From here a signal stops the run between two steps, with the results so far written.
   vdec::installInterruptHandlers();
