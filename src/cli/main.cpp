@@ -161,7 +161,11 @@ int runScene(const RunOptions& options) {
                    "(last %.3e): the model may not be in equilibrium\n", p.name.c_str(), p.stopReason.c_str(),
                    phaseRatio, p.unbalancedRatio);
   }
-  if (report.staticSolveResidual > 1e-6)
+  if (report.staticSolvePlasticFailed)
+    std::fprintf(stderr, "vdec: warning: the direct solve found no equilibrium of the plastic zones (residual %.3e of "
+                 "the forces when it gave up): the load may be at or beyond collapse; that solve left the model as it "
+                 "was and the explicit cycles went on from there\n", report.staticSolveResidual);
+  else if (report.staticSolveResidual > 1e-6)
     std::fprintf(stderr, "vdec: warning: the direct solve did not converge (last residual %.3e of the forces): joints "
                  "slipped or opened under its load, which its linear springs do not follow; the explicit cycles went "
                  "on from its last state\n", report.staticSolveResidual);

@@ -366,6 +366,7 @@ void writeResults(const std::string& dir, const Scene& scene, const RunReport& r
               {"static_solve_passes", report.staticSolvePasses},
               {"static_solve_factorisations", report.staticSolveFactorisations},
               {"static_solve_unknowns", report.staticSolveUnknowns},
+              {"static_solve_plastic_iterations", report.staticSolvePlasticIterations},
               {"unbalanced_ratio", report.lastMonitors.unbalancedRatio},
               {"stage_seconds", profile}};
   if (report.stiffnessDampingStepFactor != 1.0) j["run"]["stiffness_damping_step_factor"] = report.stiffnessDampingStepFactor;

@@ -93,17 +93,14 @@ Cycle::Cycle(Model& model, RunSettings settings, std::vector<HistorySpec> histor
           throw SceneError("solver.static_solve: the direct solve takes joints as linear springs, and joint material '" +
                            j.name + "' is continuously yielding (its stiffness grows with the normal stress); relax "
                            "the scene with explicit cycles instead");
-      for (const BlockMaterial& mat : model_.blockMaterials)
-        if (mat.plastic)
-          throw SceneError("solver.static_solve: the direct solve is elastic, and block material '" + mat.name +
-                           "' is Mohr-Coulomb: its answer could lie far beyond yield; relax the plastic problem "
-                           "with explicit cycles instead");
       const DirectSolveReport solved = solveStaticDirect(model_);
       staticSolveSeconds_ = solved.seconds;
       staticSolveResidual_ = solved.relativeResidual;
       staticSolvePasses_ += solved.solves;
       staticSolveFactorisations_ += solved.factorisations;
       staticSolveUnknowns_ = solved.unknowns;
+      staticSolvePlasticIterations_ += solved.plasticIterations;
+      staticSolvePlasticFailed_ = staticSolvePlasticFailed_ || !solved.plasticConverged;
       // The solve moved the blocks without the detection's motion bounds: look again everywhere.
       if (hasContacts_) {
         std::vector<int> all(bl.size());
@@ -627,6 +624,8 @@ void Cycle::solveDirectly() {
   staticSolvePasses_ += solved.solves;
   staticSolveFactorisations_ += solved.factorisations;
   staticSolveUnknowns_ = solved.unknowns;
+  staticSolvePlasticIterations_ += solved.plasticIterations;
+  staticSolvePlasticFailed_ = staticSolvePlasticFailed_ || !solved.plasticConverged;
   energy_.supplyByDirectSolve(storedElasticEnergy() - before);
   // The solve moved the blocks without the detection's motion bounds: look again everywhere.
   if (hasContacts_) {
@@ -948,6 +947,8 @@ RunReport Cycle::run() {
   report.staticSolvePasses = staticSolvePasses_;
   report.staticSolveFactorisations = staticSolveFactorisations_;
   report.staticSolveUnknowns = staticSolveUnknowns_;
+  report.staticSolvePlasticIterations = staticSolvePlasticIterations_;
+  report.staticSolvePlasticFailed = staticSolvePlasticFailed_;
   report.stiffnessDampingStepFactor = stiffnessDampingStepFactor_;
   report.stepLimits = stepLimits();
   report.wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();

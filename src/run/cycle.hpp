@@ -59,6 +59,8 @@ struct RunReport {
   int staticSolvePasses = 0;   // linear solves of the direct solve, over all its uses
   int staticSolveFactorisations = 0;
   int staticSolveUnknowns = 0;
+  int staticSolvePlasticIterations = 0;  // iterations of the plastic zones' equilibrium in the direct solves
+  bool staticSolvePlasticFailed = false;  // a direct solve found no equilibrium of its plastic zones
   double stiffnessDampingStepFactor = 1.0;  // sqrt(1 + xi^2) - xi when stiffness damping is on
   // Each component's largest stable step (s) at the end of the run, before the damping reductions:
   // the step is the smallest of them times those reductions.
@@ -100,7 +102,7 @@ class Cycle {
   void visitState(A& a) {
     a(dt_), a(contactStepFraction_), a(stepStiffness_), a(largestStepDisplacement_), a(motionClock_);
     a(meanContactForce_), a(largestUnbalanced_), a(step_), a(reversing_), a(alpha_), a(servoPower_), a(servoRate_);
-    a(staticSolveSeconds_), a(staticSolveResidual_), a(staticSolvePasses_), a(staticSolveFactorisations_), a(staticSolveUnknowns_), a(energy_), a(monitors_), a(histories_);
+    a(staticSolveSeconds_), a(staticSolveResidual_), a(staticSolvePasses_), a(staticSolveFactorisations_), a(staticSolveUnknowns_), a(staticSolvePlasticIterations_), a(staticSolvePlasticFailed_), a(energy_), a(monitors_), a(histories_);
     a(settings_.adaptiveDamping), a(settings_.massDamping), a(donePhases_), a(densityStep_), a(historySpecs_),
       a(stiffnessDampingStepFactor_), a(undampedStep_), a(settings_.localDamping);
     detection_.visitState(a);
@@ -170,7 +172,8 @@ class Cycle {
   double servoPower_ = 0.0, servoRate_ = 0.0;
   double staticSolveSeconds_ = -1.0;
   double staticSolveResidual_ = -1.0;
-  int staticSolvePasses_ = 0, staticSolveFactorisations_ = 0, staticSolveUnknowns_ = 0;
+  int staticSolvePasses_ = 0, staticSolveFactorisations_ = 0, staticSolveUnknowns_ = 0, staticSolvePlasticIterations_ = 0;
+  bool staticSolvePlasticFailed_ = false;
   EnergyLedger energy_;
   std::chrono::steady_clock::time_point phaseStart_;
   int firstPhase_ = 0;

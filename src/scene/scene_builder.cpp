@@ -331,9 +331,8 @@ void checkModelWide(const Model& m, const SceneDefinition& s) {
 }
 
 // A phase's switch to local damping or its direct solve, against the run's settings and the
-// model as the phase will find it (`plastic`: the block materials then Mohr-Coulomb).
-void checkPhaseSolver(const PhaseDefinition& d, const Model& m, const RunSettings& settings,
-                      const std::vector<char>& plastic, bool velocityDriven) {
+// model as the phase will find it.
+void checkPhaseSolver(const PhaseDefinition& d, const Model& m, const RunSettings& settings, bool velocityDriven) {
   if (d.localDamping.value_or(0.0) > 0.0 && settings.stiffnessDamping > 0.0)
     d.origin.fail("local_damping", "the run has stiffness-proportional damping (solver.stiffness_damping or "
                                    "solver.rayleigh), which goes with mass damping, not with local damping");
@@ -349,11 +348,6 @@ void checkPhaseSolver(const PhaseDefinition& d, const Model& m, const RunSetting
     if (j.law == JointLaw::ContinuouslyYielding)
       d.origin.fail("static_solve", "the direct solve takes joints as linear springs, and joint material '" + j.name +
                                         "' is continuously yielding; relax the phase with explicit cycles instead");
-  for (std::size_t i = 0; i < plastic.size(); ++i)
-    if (plastic[i])
-      d.origin.fail("static_solve", "the direct solve is elastic, and block material '" + m.blockMaterials[i].name +
-                                        "' is Mohr-Coulomb when the phase starts: its answer could lie far beyond "
-                                        "yield; relax the phase with explicit cycles instead");
 }
 
 void applyInitialStress(Model& m, const InitialStressDefinition& d, bool farField) {
@@ -619,8 +613,6 @@ Scene buildScene(SceneDefinition s) {
       d.origin.fail("name", "bolt '" + d.name + "' has the name of a boundary, beam or cable: give it another (a phase's "
                             "free takes boundaries and supports by name)");
   std::optional<Model> excavated;  // a copy of the model, excavated as the phases will, once one does
-  std::vector<char> plastic;  // block materials Mohr-Coulomb by the phase at hand
-  for (const BlockMaterial& mat : m.blockMaterials) plastic.push_back(mat.plastic);
   // Boundary conditions in force, by name ("" for unnamed ones), and whether they drive a velocity.
   std::vector<std::pair<std::string, bool>> inForce;
   for (const BoundaryCondition& b : m.boundaryConditions) inForce.emplace_back(b.name, b.velocityBits != 0);
@@ -634,13 +626,12 @@ Scene buildScene(SceneDefinition s) {
       d.boundaryElements->origin.failTable("puts a far field in place, and one is already there (the scene's "
                                            "[boundary_elements] or an earlier phase's): a model has one");
     farField = farField || changes.boundaryElements.has_value();
-    for (const auto& [material, strength] : changes.blockStrengths) plastic[material] = 1;
     for (const std::string& name : changes.freeBoundaries)
       std::erase_if(inForce, [&name](const auto& b) { return b.first == name; });
     for (const BoundaryCondition& b : changes.boundaries) inForce.emplace_back(b.name, b.velocityBits != 0);
     bool velocityDriven = false;
     for (const auto& [name, drives] : inForce) velocityDriven = velocityDriven || drives;
-    checkPhaseSolver(d, excavated ? *excavated : m, s.settings, plastic, velocityDriven);
+    checkPhaseSolver(d, excavated ? *excavated : m, s.settings, velocityDriven);
   }
   if (s.initialStress) applyInitialStress(m, *s.initialStress, s.boundaryElements || farField);
   if (s.boundaryElements) {

@@ -1,5 +1,6 @@
 #include "zone/direct_solve.hpp"
 
+#include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <chrono>
@@ -14,6 +15,7 @@
 #include "joint/joint_laws.hpp"
 #include "motion/gridpoint_motion.hpp"
 #include "zone/cst.hpp"
+#include "zone/mohr_coulomb.hpp"
 
 namespace vdec {
 
@@ -80,9 +82,177 @@ constexpr double kResidualTolerance = 1e-12;
 // joints that carry springs change (one opened or closed in a solve).
 struct StiffnessFactor {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  Eigen::SparseMatrix<double> stiffness;  // of the present configuration, kept with plastic zones
   std::vector<int> springContacts;
   int unknowns = -1;
 };
+
+bool anyPlasticZone(const Model& m) {
+  for (int z = 0; z < m.zones.size(); ++z)
+    if (m.blockMaterials[m.zones.material[z]].plastic) return true;
+  return false;
+}
+
+struct ZoneStress {
+  double sxx, syy, sxy, szz;
+  std::uint8_t state;
+};
+
+// The zones as the solve sees them: shape gradients on the configuration of the pass, the
+// stresses the pass started from and the elastic constants. stressAt gives a zone's stress after
+// the displacement u of the pass, the elastic increment D e(u) returned to the yield surface of a
+// Mohr-Coulomb zone in one step from the pass's start (the fully implicit, backward Euler, return
+// over the pass's increment: the same mohrCoulombReturn as the explicit cycles').
+struct PlasticZones {
+  std::vector<ShapeGradients> shape;
+  std::vector<std::array<int, 6>> dof;
+  const Model* model = nullptr;
+
+  // The elastic trial: the pass's starting stress plus D B u.
+  ZoneStress trialAt(int z, const Eigen::VectorXd& u) const {
+    const Zones& zn = model->zones;
+    const ShapeGradients& s = shape[z];
+    double e[3] = {};
+    for (int c = 0; c < 3; ++c) {
+      const int ix = dof[z][2 * c], iy = dof[z][2 * c + 1];
+      const double ux = ix >= 0 ? u[ix] : 0.0, uy = iy >= 0 ? u[iy] : 0.0;
+      e[0] += s.b[c] * ux;
+      e[1] += s.c[c] * uy;
+      e[2] += s.c[c] * ux + s.b[c] * uy;
+    }
+    const BlockMaterial& mat = model->blockMaterials[zn.material[z]];
+    const double a1 = mat.bulk + 4.0 * mat.shear / 3.0, a2 = mat.bulk - 2.0 * mat.shear / 3.0;
+    return {zn.sxx[z] + a1 * e[0] + a2 * e[1], zn.syy[z] + a2 * e[0] + a1 * e[1], zn.sxy[z] + mat.shear * e[2],
+            zn.szz[z] + a2 * (e[0] + e[1]), Elastic};
+  }
+
+  // The trial returned to the yield surface of a plastic zone.
+  static ZoneStress returned(const BlockMaterial& mat, ZoneStress t) {
+    if (!mat.plastic) return t;
+    const double a1 = mat.bulk + 4.0 * mat.shear / 3.0, a2 = mat.bulk - 2.0 * mat.shear / 3.0;
+    t.state = mohrCoulombReturn(mat.mohrCoulomb, a1, a2, t.sxx, t.syy, t.sxy, t.szz);
+    return t;
+  }
+
+  ZoneStress stressAt(int z, const Eigen::VectorXd& u) const {
+    return returned(model->blockMaterials[model->zones.material[z]], trialAt(z, u));
+  }
+
+  // The forces the returns take off the elastic trial, sum over yielding zones of A B^T (trial -
+  // returned): the residual is f - K u + relief(u).
+  Eigen::VectorXd relief(const Eigen::VectorXd& u, int& yielding) const {
+    const Zones& zn = model->zones;
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(u.size());
+    yielding = 0;
+    for (int z = 0; z < zn.size(); ++z) {
+      const BlockMaterial& mat = model->blockMaterials[zn.material[z]];
+      if (!mat.plastic) continue;
+      const ZoneStress trial = trialAt(z, u);
+      const ZoneStress back = returned(mat, trial);
+      if (back.state == Elastic) continue;
+      ++yielding;
+      const double dxx = trial.sxx - back.sxx, dyy = trial.syy - back.syy, dxy = trial.sxy - back.sxy;
+      const ShapeGradients& s = shape[z];
+      for (int c = 0; c < 3; ++c) {
+        if (dof[z][2 * c] >= 0) r[dof[z][2 * c]] += s.area * (s.b[c] * dxx + s.c[c] * dxy);
+        if (dof[z][2 * c + 1] >= 0) r[dof[z][2 * c + 1]] += s.area * (s.c[c] * dyy + s.b[c] * dxy);
+      }
+    }
+    return r;
+  }
+};
+
+PlasticZones plasticZones(const Model& m, const std::vector<int>& unknown) {
+  const Gridpoints& g = m.gridpoints;
+  const Zones& zn = m.zones;
+  PlasticZones p;
+  p.model = &m;
+  p.shape.reserve(zn.size());
+  p.dof.resize(zn.size());
+  for (int z = 0; z < zn.size(); ++z) {
+    const auto& n = zn.gridpoint[z];
+    p.shape.push_back(gradients(g.position[n[0]], g.position[n[1]], g.position[n[2]]));
+    for (int c = 0; c < 3; ++c) {
+      p.dof[z][2 * c] = unknown[2 * n[c]];
+      p.dof[z][2 * c + 1] = unknown[2 * n[c] + 1];
+    }
+  }
+  return p;
+}
+
+constexpr int kAndersonDepth = 8;
+constexpr int kMaxPlasticIterations = 2000;
+// Iterations without halving the best residual after which the zones are taken to have no
+// equilibrium in reach (a load at or beyond collapse): MC-TUNNEL-CONVERGENCE's passes converge in
+// 10 to 40.
+constexpr int kStagnantIterations = 200;
+
+// Solves f - K u + relief(u) = 0 on one configuration: the fixed point of u -> u + K0^-1 r(u),
+// the elastic (initial) stiffness K0 factorised once standing in for the tangent (Zienkiewicz,
+// Valliappan and King 1969), accelerated by Anderson mixing of the last iterates (Walker and Ni
+// 2011): each step takes the combination of the recent steps that best cancels the latest
+// correction, as a secant method would. The returns are exact at every iterate, so the answer is
+// the equilibrium of the same stress update the explicit cycles make; only the route differs.
+// Without convergence it returns a zero displacement (the pass changes nothing: an iterate far
+// from equilibrium is no state to start the cycles from) and clears report.plasticConverged.
+Eigen::VectorXd plasticIteration(const PlasticZones& zones, const StiffnessFactor& factor, const Eigen::VectorXd& f,
+                                 double target, DirectSolveReport& report) {
+  const Eigen::SparseMatrix<double>& K = factor.stiffness;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(f.size());
+  std::vector<Eigen::VectorXd> steps, corrections;  // differences of successive G(u) and of F(u)
+  Eigen::VectorXd lastG, lastF;
+  double lastSize = INFINITY, bestSize = INFINITY;
+  int bestIteration = 0;
+  for (int iteration = 0, k = 0; iteration < kMaxPlasticIterations; ++iteration, ++k) {
+    int yielding = 0;
+    const Eigen::VectorXd residual = f - K * u + zones.relief(u, yielding);
+    report.plasticIterations++;
+    report.yieldingZones = yielding;
+    const double size = residual.norm();
+    report.plasticResidual = size;
+    if (!(size > target)) return u;
+    if (size < 0.5 * bestSize) {
+      bestSize = size;
+      bestIteration = iteration;
+    } else if (iteration - bestIteration > kStagnantIterations || !std::isfinite(size)) {
+      break;
+    }
+    // Mixing across a change of the set of yielding zones (a kink of the map) can mislead; a
+    // residual that grows is taken as that sign, and the mixing starts afresh from this iterate.
+    if (size > 2.0 * lastSize) {
+      steps.clear();
+      corrections.clear();
+      k = 0;
+    }
+    lastSize = size;
+    const Eigen::VectorXd F = factor.ldlt.solve(residual);  // the fixed-point correction
+    const Eigen::VectorXd G = u + F;
+    if (k > 0) {
+      steps.push_back(G - lastG);
+      corrections.push_back(F - lastF);
+      if (static_cast<int>(steps.size()) > kAndersonDepth) {
+        steps.erase(steps.begin());
+        corrections.erase(corrections.begin());
+      }
+    }
+    lastG = G;
+    lastF = F;
+    u = G;
+    const int depth = static_cast<int>(corrections.size());
+    if (depth == 0) continue;
+    // gamma minimises |F - sum gamma_j dF_j|; plain loops keep the sums' order fixed.
+    Eigen::MatrixXd normal(depth, depth);
+    Eigen::VectorXd rhs(depth);
+    for (int i = 0; i < depth; ++i) {
+      rhs[i] = corrections[i].dot(F);
+      for (int j = 0; j <= i; ++j) normal(i, j) = normal(j, i) = corrections[i].dot(corrections[j]);
+    }
+    const Eigen::VectorXd gamma = normal.completeOrthogonalDecomposition().solve(rhs);
+    for (int j = 0; j < depth; ++j) u -= gamma[j] * steps[j];
+  }
+  report.plasticConverged = false;
+  return Eigen::VectorXd::Zero(f.size());
+}
 
 // One linear solve on the current configuration; returns the norm of the residual it solved for
 // and the scale of the forces (loads or zone forces), and adds the largest displacement to
@@ -118,7 +288,11 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report, Stiffne
   const std::vector<JointSpring> springs = jointSprings(m);
   std::vector<int> springContacts;
   for (const JointSpring& js : springs) springContacts.push_back(js.contact);
-  const bool assemble = factor.unknowns != count || factor.springContacts != springContacts;
+  const bool refactor = factor.unknowns != count || factor.springContacts != springContacts;
+  // With plastic zones the elastic stiffness of this configuration forms the residual of the
+  // iteration below, so it is assembled on every pass; the factor stays that of an earlier one.
+  const bool plastic = anyPlasticZone(m);
+  const bool assemble = refactor || plastic;
   std::vector<Eigen::Triplet<double>> entries;
   if (assemble) entries.reserve(36 * static_cast<std::size_t>(zn.size()));
   for (int z = 0; z < zn.size(); ++z) {
@@ -200,7 +374,11 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report, Stiffne
                 entries.emplace_back(row, col, share * be.stiffness[static_cast<std::size_t>(2 * i + r) * (2 * be.size()) + 2 * j + t]);
             }
         }
-  if (assemble) {
+  if (plastic) {
+    factor.stiffness.resize(count, count);
+    factor.stiffness.setFromTriplets(entries.begin(), entries.end());
+  }
+  if (refactor) {
     Eigen::SparseMatrix<double> K(count, count);
     K.setFromTriplets(entries.begin(), entries.end());
     factor.ldlt.compute(K);
@@ -219,26 +397,25 @@ std::pair<double, double> solveOnce(Model& m, DirectSolveReport& report, Stiffne
     factor.springContacts = std::move(springContacts);
     ++report.factorisations;
   }
-  const Eigen::VectorXd u = factor.ldlt.solve(f);
-  // Apply: stresses take the elastic increment of du on the configuration it was solved on.
   report.unknowns = count;
+  const PlasticZones zones = plasticZones(m, unknown);
+  Eigen::VectorXd u;
+  if (plastic) {
+    const double scale = std::max(external.norm(), (f - external).norm());
+    u = plasticIteration(zones, factor, f, kResidualTolerance * scale, report);
+  } else {
+    u = factor.ldlt.solve(f);
+  }
+  // Apply: stresses take the increment of du on the configuration it was solved on, returned to
+  // the yield surface where the zone is plastic.
   for (int z = 0; z < zn.size(); ++z) {
-    const auto& n = zn.gridpoint[z];
-    const ShapeGradients s = gradients(g.position[n[0]], g.position[n[1]], g.position[n[2]]);
-    double e[3] = {};
-    for (int c = 0; c < 3; ++c) {
-      const int ix = unknown[2 * n[c]], iy = unknown[2 * n[c] + 1];
-      const double ux = ix >= 0 ? u[ix] : 0.0, uy = iy >= 0 ? u[iy] : 0.0;
-      e[0] += s.b[c] * ux;
-      e[1] += s.c[c] * uy;
-      e[2] += s.c[c] * ux + s.b[c] * uy;
-    }
-    const BlockMaterial& mat = m.blockMaterials[zn.material[z]];
-    const double a1 = mat.bulk + 4.0 * mat.shear / 3.0, a2 = mat.bulk - 2.0 * mat.shear / 3.0;
-    zn.sxx[z] += a1 * e[0] + a2 * e[1];
-    zn.syy[z] += a2 * e[0] + a1 * e[1];
-    zn.sxy[z] += mat.shear * e[2];
-    zn.szz[z] += a2 * (e[0] + e[1]);
+    ZoneStress stress = zones.stressAt(z, u);
+    zn.sxx[z] = stress.sxx;
+    zn.syy[z] = stress.syy;
+    zn.sxy[z] = stress.sxy;
+    zn.szz[z] = stress.szz;
+    if (stress.state != Elastic || zn.plasticState[z] != Elastic)
+      zn.plasticState[z] = static_cast<std::uint8_t>(stress.state | (zn.plasticState[z] != Elastic ? PlasticInPast : 0));
   }
   auto displacement = [&](int i) {
     const int ix = unknown[2 * i], iy = unknown[2 * i + 1];
@@ -313,6 +490,12 @@ DirectSolveReport solveStaticDirect(Model& m) {
     ++report.solves;
     const auto [residual, scale] = solveOnce(m, report, factor);
     report.relativeResidual = scale > 0.0 ? residual / scale : 0.0;
+    // Plastic zones with no equilibrium in reach (a load near collapse): further passes would
+    // not find one either; the explicit cycles take over from here.
+    if (!report.plasticConverged) {
+      report.relativeResidual = scale > 0.0 ? report.plasticResidual / scale : 0.0;
+      break;
+    }
     if (!(residual > kResidualTolerance * scale)) break;
   }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -206,6 +206,8 @@ def test_salencon_rejects_bad_input():
     with pytest.raises(ValueError):
         _salencon(np.array([0.5, 1.0]))                       # inside the tunnel
     with pytest.raises(ValueError):
+        _salencon(1.0 - 1e-9)                                 # inside by more than round-off
+    with pytest.raises(ValueError):
         _salencon(1.0, dilation_deg=31.0)                     # psi > phi
     with pytest.raises(ValueError):
         _salencon(1.0, dilation_deg=-1.0)
@@ -217,6 +219,15 @@ def test_salencon_rejects_bad_input():
         _salencon(1.0, pi=60e6)                               # expansion failure, not covered
     with pytest.raises(ValueError):
         _salencon(1.0, nu=0.5)
+
+
+@REQ
+def test_salencon_takes_a_wall_point_with_round_off_at_the_wall():
+    # A vertex of a 256-sided polygon on the wall lies at r = 1 - 1.1e-16.
+    at_wall = _salencon(np.array([1.0]))
+    rounded = _salencon(np.array([1.0 - 1.1e-16]))
+    for key in ("ur", "srr", "stt"):
+        assert rounded[key][0] == at_wall[key][0]
 
 
 @REQ

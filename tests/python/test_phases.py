@@ -404,14 +404,11 @@ require_equilibrium = true
 
 @pytest.mark.requirements("REQ-RUN-004", "REQ-QA-007")
 @pytest.mark.parametrize("change, key, message", [
-    ('[[phase.block_material]]\nname = "rock"\nfriction = 30.0\ncohesion = 1e6\n', "phase[0].static_solve",
-     "is Mohr-Coulomb when the phase starts"),
     ("local_damping = 1.0\n", "phase[0].local_damping", "must lie in [0, 1)"),
     ("local_damping = 0.8\nmass_damping = 5.0\n", "phase[0].local_damping", "replaces mass damping"),
 ])
 def test_bad_solver_switches_in_a_phase_are_scene_errors(tmp_path, change, key, message):
-    solve = "static_solve = true\n" if "static_solve" in key else ""
-    done, _ = run(tmp_path, COLUMN + '[[phase]]\nname = "p"\nstop = { cycles = 2 }\n' + solve + change)
+    done, _ = run(tmp_path, COLUMN + '[[phase]]\nname = "p"\nstop = { cycles = 2 }\n' + change)
     assert done.returncode == 3, done.stderr
     assert f"key '{key}'" in done.stderr and message in done.stderr, done.stderr
 

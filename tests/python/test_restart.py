@@ -113,8 +113,9 @@ def test_a_foreign_file_is_refused(tmp_path, saved):
 @REQ
 def test_an_older_format_is_refused(tmp_path, saved):
     scene, content = saved
-    older = content[:8] + (0).to_bytes(4, "little") + content[12:]
-    assert "state file format 0, this vdec reads format 1" in refused(tmp_path, scene, older)
+    current = int.from_bytes(content[8:12], "little")
+    older = content[:8] + (current - 1).to_bytes(4, "little") + content[12:]
+    assert f"state file format {current - 1}, this vdec reads format {current}" in refused(tmp_path, scene, older)
 
 
 @REQ

@@ -76,6 +76,9 @@ def _check_young_poisson(E, nu):
         raise ValueError(f"nu = {nu}: Poisson's ratio must lie in (-1, 1/2) for a stable isotropic solid")
 
 
+WALL_ROUNDOFF = 1e-12  # relative: how far inside the wall a point of it may lie by round-off
+
+
 def salencon_tunnel(*, r, a, p0, pi, E, nu, cohesion, friction_deg, dilation_deg):
     """Stresses and radial displacement around a circular tunnel (radius a) in an infinite,
     elastic, perfectly plastic Mohr-Coulomb medium under plane strain, hydrostatic in-situ stress
@@ -131,7 +134,8 @@ def salencon_tunnel(*, r, a, p0, pi, E, nu, cohesion, friction_deg, dilation_deg
 
     Valid for 0 <= pi <= (2 N_phi p0 + sigma_c) / (1 + N_phi) (beyond that the wall fails with the
     radial stress as the major one, a cavity expansion not covered here), (N_phi - 1) pi +
-    sigma_c > 0 (a finite plastic zone) and r >= a. Displacements are those caused by the
+    sigma_c > 0 (a finite plastic zone) and r >= a (points within a relative 1e-12 inside the wall,
+    coordinates' round-off, are taken at the wall). Displacements are those caused by the
     unloading from p0 to pi (zero in the in-situ state).
 
     Parameters: r (m, array), a (m), p0, pi (Pa, compression positive), E (Pa), nu, cohesion (Pa),
@@ -151,8 +155,11 @@ def salencon_tunnel(*, r, a, p0, pi, E, nu, cohesion, friction_deg, dilation_deg
     _check_young_poisson(E, nu)
     if not a > 0.0:
         raise ValueError(f"a = {a}: the tunnel radius must be positive")
-    if np.any(~(r >= a)):
+    # A point of the wall whose coordinates carry round-off (r = a (1 - 1e-16) from a polygon's
+    # vertex) is on the wall; inside it by more is an error.
+    if np.any(~(r >= a * (1.0 - WALL_ROUNDOFF))):
         raise ValueError("r must lie at or outside the tunnel wall (r >= a)")
+    r = np.maximum(r, a)
     if not p0 > 0.0:
         raise ValueError(f"p0 = {p0}: the in-situ stress must be a positive (compressive) pressure")
     if not pi >= 0.0:
