@@ -182,10 +182,14 @@ def setup_figure(snapshot, scene, block_names, contacts=(), samples=(), title=""
             handles.append(ax.plot(xs, ys, ls="none", marker="o", ms=2.5, color=layers.SAMPLE_COLOUR if k == 0
                                    else f"C{k}", zorder=8, label=label)[0])
         if handles:
-            ax.legend(handles=handles, loc="lower right", fontsize=6)
+            ax.legend(handles=handles, loc="best", fontsize=6)
         ax.autoscale_view()
         ax.margins(0.05)
-        if boundaries["loads"] is not None:
-            fig.text(0.01, 0.01, f"load arrows {boundaries['scale']:.4g} m per N/m, at cycle 0", fontsize=6)
+        notes = [f"load arrows {boundaries['scale']:.4g} m per N/m, at cycle 0"] if boundaries["loads"] else []
+        gravity = ((scene or {}).get("model") or {}).get("gravity")
+        if isinstance(gravity, list) and any(gravity):
+            notes.append(f"gravity ({gravity[0]:g}, {gravity[1]:g}) m/s^2")
+        if notes:
+            fig.text(0.01, 0.01, "; ".join(notes), fontsize=6)
         ax.tick_params(labelsize=6)
     return fig

@@ -12,7 +12,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from vdec_plot.errors import NO_DATA, PlotError
-from vdec_plot.snapshot import RIGID_BLOCK, ZONE
+from vdec_plot.snapshot import BEAM_ELEMENT, BOLT, CABLE_ELEMENT, RIGID_BLOCK, ZONE
 
 # Joint states, in the order a contact is tested for them.
 JOINT_COLOURS = {"open": "tab:red", "slipping": "tab:orange", "closed, bond broken": "tab:purple",
@@ -28,6 +28,8 @@ STRESS_MEANINGS = {"sxx": "sxx", "syy": "syy", "sxy": "sxy", "szz": "szz (out of
 COMPRESSION_COLOUR, TENSION_COLOUR = "black", "tab:red"
 OUTLINE_COLOUR, ZONE_EDGE_COLOUR = "black", "0.6"
 RIGID_FACE, SIMPLY_DEFORMABLE_FACE = "0.92", "#dde8f4"
+STRUCTURE_COLOURS = {BEAM_ELEMENT: ("darkgreen", "beam"), CABLE_ELEMENT: ("saddlebrown", "cable"),
+                     BOLT: ("darkmagenta", "bolt")}
 
 
 def model_extent(snapshot):
@@ -59,9 +61,11 @@ def block_outline_edges(snapshot):
 
 
 def draw_geometry(ax, snapshot, simply_deformable=(), fixed_hatch=False, stress_drawn=False):
-    """Zones (thin grey edges), the outlines of deformable blocks, rigid blocks (grey) and
-    simply-deformable blocks (blue, or unfilled over a stress layer: stress_drawn); with
-    fixed_hatch, a rigid block with every degree of freedom driven is hatched. Returns {"zones", "outlines", "rigid"} collections (None when absent)."""
+    """Zones (thin grey edges), the outlines of deformable blocks, rigid blocks (grey),
+    simply-deformable blocks (blue, or unfilled over a stress layer: stress_drawn), and beams,
+    cables and bolts as lines (STRUCTURE_COLOURS); with fixed_hatch, a rigid block with every
+    degree of freedom driven is hatched. Returns {"zones", "outlines", "rigid", and "beam",
+    "cable", "bolt" when present} collections (None when absent)."""
     drawn = {"zones": None, "outlines": None, "rigid": None}
     zones = snapshot.of_kind(ZONE)
     if zones.size:
@@ -85,6 +89,15 @@ def draw_geometry(ax, snapshot, simply_deformable=(), fixed_hatch=False, stress_
                                                  facecolors="none", edgecolors="0.45", linewidths=0.0,
                                                  hatch="////", zorder=2.1))
         drawn["rigid"] = ax.add_collection(collection)
+    handles = []
+    for kind, (colour, label) in STRUCTURE_COLOURS.items():
+        cells = snapshot.of_kind(kind)
+        if cells.size:
+            drawn[label] = ax.add_collection(LineCollection(snapshot.polygons(cells), colors=colour, linewidths=1.8,
+                                                            zorder=4))
+            handles.append(Line2D([], [], color=colour, lw=1.8, label=f"{label} elements ({cells.size})"))
+    if handles:
+        ax.add_artist(ax.legend(handles=handles, loc="best", fontsize=7, title="supports", title_fontsize=7))
     ax.autoscale_view()
     return drawn
 

@@ -312,9 +312,12 @@ def set_up_figure(record, snapshot_path, problem=None):
     command = shlex.split(run["command"])
     try:
         snapshot = read_snapshot(snapshot_path, 0.0)
-        results = json.loads((Path(run["folder"]) / "results.json").read_text())
-    except (PlotError, OSError, ValueError):
+    except PlotError:
         return None
+    try:  # block names and contacts place the block and joint histories; a failed run has none
+        results = json.loads((Path(run["folder"]) / "results.json").read_text())
+    except (OSError, ValueError):
+        results = {}
     names = [b.get("name", "") for b in results.get("blocks") or []]
     variant = f" [{run['variant']}]" if run.get("variant") else ""
     try:
