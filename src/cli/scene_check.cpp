@@ -1,8 +1,10 @@
 #include "cli/scene_check.hpp"
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
+#include "core/errors.hpp"
 #include "io/results_writer.hpp"
 #include "io/scene_reader.hpp"
 #include "io/vtk_writer.hpp"
@@ -95,6 +97,13 @@ int checkScene(const std::string& path, const std::vector<std::string>& override
   }
   std::printf("histories %zu\n", scene.histories.size());
   if (!vtkDirectory.empty()) {
+    // Made here so that a bad directory is named as the --vtk option's, not a run's --out.
+    std::error_code error;
+    std::filesystem::create_directories(vtkDirectory, error);
+    if (error || !std::filesystem::is_directory(vtkDirectory))
+      throw OutputError(vtkDirectory + ": cannot create this --vtk directory (" +
+                        (error ? error.message() : std::string("a file of that name is in the way")) +
+                        "); choose another");
     VtkSeries::removeStale(vtkDirectory);
     VtkSeries series(vtkDirectory);
     series.prepare();

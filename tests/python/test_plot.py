@@ -154,6 +154,10 @@ def test_check_writes_the_built_model_with_its_boundary_conditions(tmp_path):
     driven = snapshot.point_data["driven"].astype(int)
     assert sorted(set(driven)) == [0, 1, 2, 7]   # x on x = 0, y on y = 0, the fixed plinth
     assert np.all(snapshot.point_data["displacement"] == 0.0)
+    (tmp_path / "file").write_text("")
+    done = subprocess.run([VDEC, "check", str(FIXTURES / "plastic_tunnel.toml"), "--vtk", str(tmp_path / "file")],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 7 and "file: cannot create this --vtk directory" in done.stderr
 
 
 @pytest.mark.requirements("REQ-QA-016")
