@@ -193,3 +193,18 @@ def setup_figure(snapshot, scene, block_names, contacts=(), samples=(), title=""
             fig.text(0.01, 0.01, "; ".join(notes), fontsize=6)
         ax.tick_params(labelsize=6)
     return fig
+
+
+def plastic_result_figure(snapshot, states, source, title="", size=(5.2, 4.0)):
+    """The plastic states at the end of a run (states: results.json zones.plastic_state, from the
+    file source) on the zones of its cycle-0 model (the undeformed mesh), for the verification
+    report. Returns the Figure."""
+    with style():
+        fig = Figure(figsize=size)
+        ax = _model_axes(fig, title)
+        layers.fill_plastic_states(ax, snapshot, states, source)
+        layers.draw_geometry(ax, snapshot)
+        ax.autoscale_view()
+        ax.margins(0.05)
+        ax.tick_params(labelsize=6)
+    return fig

@@ -293,12 +293,18 @@ def draw_plastic(ax, run, snapshot):
     zones.plastic_state): PLASTIC_COLOURS; zones that never yielded are not filled. Returns
     (PolyCollection, state label per zone, None where not filled)."""
     _require_end(run, snapshot, "plastic")
-    states = (run.results.get("zones") or {}).get("plastic_state")
+    return fill_plastic_states(ax, snapshot, (run.results.get("zones") or {}).get("plastic_state"),
+                               run.folder / "results.json")
+
+
+def fill_plastic_states(ax, snapshot, states, source):
+    """Fills the snapshot's zones by the plastic states `states` (one per zone, from the results
+    file `source`), as draw_plastic does."""
     zones = snapshot.of_kind(ZONE)
     if not states:
-        raise PlotError(NO_DATA, f"--plastic: {run.folder / 'results.json'} has no zones, whose plastic states it draws")
+        raise PlotError(NO_DATA, f"--plastic: {source} has no zones, whose plastic states it draws")
     if len(states) != zones.size:
-        raise PlotError(NO_DATA, f"--plastic: {snapshot.path} has {zones.size} zones and results.json "
+        raise PlotError(NO_DATA, f"--plastic: {snapshot.path} has {zones.size} zones and {source} "
                                  f"{len(states)}: they are not of the same run")
     labels = []
     for s in states:

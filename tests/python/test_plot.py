@@ -172,6 +172,8 @@ def test_the_report_draws_a_set_up_figure_from_the_run(runs, tmp_path):
     assert setups["FIXTURE"][0] == folder / "setup" / "snapshot_000000000.vtu"
     figures = problem_figures(record, setups["FIXTURE"])
     assert figures[0]["name"] == "FIXTURE-setup.png" and figures[0]["png"].startswith(b"\x89PNG")
+    # Zones yielded in the fixture: the plastic zone at the end follows.
+    assert [f["name"] for f in figures] == ["FIXTURE-setup.png", "FIXTURE-plastic.png"]
     # A vdec that cannot write the model leaves the figure out and says why.
     record["runs"][0]["command"] = shlex.join(["/bin/false", "run", "scene.toml", "--out", str(folder)])
     path, why = setup_models([record])["FIXTURE"]

@@ -30,7 +30,7 @@ try:
 except ImportError:
     sys.path.append(str(Path(__file__).resolve().parents[3] / "python"))
 from vdec_plot.errors import PlotError
-from vdec_plot.figures import read_scene, setup_figure
+from vdec_plot.figures import plastic_result_figure, read_scene, setup_figure
 from vdec_plot.snapshot import read_snapshot
 
 DPI = 150
@@ -328,6 +328,21 @@ def set_up_figure(record, snapshot_path, problem=None):
     return png_bytes(fig)
 
 
+def plastic_figure(record, snapshot_path):
+    """The plastic zones at the end of the first run on its cycle-0 mesh, when some zone yielded;
+    else None."""
+    run = record["runs"][0]
+    source = Path(run["folder"]) / "results.json"
+    try:
+        states = (json.loads(source.read_text()).get("zones") or {}).get("plastic_state") or []
+        if not any(states):
+            return None
+        return png_bytes(plastic_result_figure(read_snapshot(snapshot_path, 0.0), states, source,
+                                               title=f"{record['id']}: plastic state at the end"))
+    except (OSError, ValueError, PlotError):
+        return None
+
+
 def problem_figures(record, setup=None, problem=None):
     """The figures of one problem, in order: [{"name": file name, "png": bytes, "caption": text,
     "wide": bool}]; the check numbers are those of the problem's check table (1 = first metric).
@@ -344,6 +359,13 @@ def problem_figures(record, setup=None, problem=None):
                             "blocks in thin lines), gridpoints with a driven velocity component (x, y or both; "
                             "zero when fixed), loads at the start (red arrows), where the histories sample "
                             "(stars) and where the field checks sample (dots)."})
+        png = plastic_figure(record, setup[0])
+        if png is not None:
+            figures.append({"name": f"{pid}-plastic.png", "png": png, "wide": False, "caption":
+                            f"{pid}: plastic state of the Mohr-Coulomb zones at the end of the run "
+                            f"{run.get('variant') or '(plain)'} (results.json zones.plastic_state), drawn on the "
+                            "mesh at cycle 0: red yielding in shear in the last step, purple in tension, olive "
+                            "yielded before and elastic now, unfilled never yielded."})
     numbered = list(enumerate(record["metrics"], start=1))
     series = [(n, m) for n, m in numbered if (m.get("plot") or {}).get("kind") == "series"]
     scalars = [(n, m) for n, m in numbered if (m.get("plot") or {}).get("kind") == "scalar"]
