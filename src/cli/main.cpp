@@ -208,6 +208,9 @@ int main(int argc, char** argv) {
   CLI::App* check = app.add_subcommand("check", "read and build a scene and print what a run would do, without running it");
   check->add_option("scene", checkPath, "scene file (TOML)")->required();
   check->add_option("--set", checkOverrides, "override a scene key, as for run (repeatable)");
+  std::string checkVtk;
+  check->add_option("--vtk", checkVtk,
+                    "also write the built model as a cycle-0 VTK snapshot into this directory (for `vdec plot`)");
   // Their own options are parsed by the Python programs (`vdec plot --help`).
   CLI::App* plot = app.add_subcommand("plot", "draw a run's results (geometry, joints, forces, stresses, histories)");
   CLI::App* sweep = app.add_subcommand("sweep", "run a scene over a product of --set values or seeds, locally or on Slurm");
@@ -229,7 +232,7 @@ int main(int argc, char** argv) {
   // From here a signal stops the run between two steps, with the results so far written.
   vdec::installInterruptHandlers();
   try {
-    if (check->parsed()) return vdec::checkScene(checkPath, checkOverrides);
+    if (check->parsed()) return vdec::checkScene(checkPath, checkOverrides, checkVtk);
     return runScene(options);
   } catch (const vdec::Error& e) {
     std::fprintf(stderr, "vdec: error: %s\n", e.what());

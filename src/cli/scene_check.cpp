@@ -1,10 +1,13 @@
 #include "cli/scene_check.hpp"
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
+#include "core/errors.hpp"
 #include "io/results_writer.hpp"
 #include "io/scene_reader.hpp"
+#include "io/vtk_writer.hpp"
 #include "run/cycle.hpp"
 
 namespace vdec {
@@ -40,7 +43,7 @@ std::string phaseChanges(const PhaseChanges& c) {
 
 }  // namespace
 
-int checkScene(const std::string& path, const std::vector<std::string>& overrides) {
+int checkScene(const std::string& path, const std::vector<std::string>& overrides, const std::string& vtkDirectory) {
   Scene scene = readScene(path, overrides);
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "vdec: warning: %s\n", w.c_str());
   RunSettings settings = scene.settings;
@@ -93,6 +96,20 @@ int checkScene(const std::string& path, const std::vector<std::string>& override
     }
   }
   std::printf("histories %zu\n", scene.histories.size());
+  if (!vtkDirectory.empty()) {
+    // Made here so that a bad directory is named as the --vtk option's, not a run's --out.
+    std::error_code error;
+    std::filesystem::create_directories(vtkDirectory, error);
+    if (error || !std::filesystem::is_directory(vtkDirectory))
+      throw OutputError(vtkDirectory + ": cannot create this --vtk directory (" +
+                        (error ? error.message() : std::string("a file of that name is in the way")) +
+                        "); choose another");
+    VtkSeries::removeStale(vtkDirectory);
+    VtkSeries series(vtkDirectory);
+    series.prepare();
+    series.write(scene.model);
+    std::printf("model at cycle 0 written to %s/snapshot_000000000.vtu\n", vtkDirectory.c_str());
+  }
   return 0;
 }
 

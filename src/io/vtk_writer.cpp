@@ -32,7 +32,25 @@ struct Grid {
   std::vector<double> pressure, area, flow, aperture;
   bool beams = false;  // the beams' arrays below, with beams only
   std::vector<double> axialForce, beamShear, moment0, moment1;
+  // Point data of the boundary conditions, so that a picture can show them: the DrivenDof bits
+  // of a gridpoint or of a rigid vertex's block, and the loaded edges' force on each gridpoint.
+  std::vector<int> driven;
+  std::vector<Vec2> boundaryLoad;
 };
+
+void boundaryConditions(const Model& m, Grid& g) {
+  g.driven.assign(g.points.size(), 0);
+  g.boundaryLoad.assign(g.points.size(), Vec2{});
+  for (int i = 0; i < m.gridpoints.size(); ++i) g.driven[i] = m.gridpoints.driven[i] & (DriveX | DriveY);
+  for (std::size_t c = 0; c < g.cells.size(); ++c)
+    if (g.kind[c] == 1)
+      for (int p : g.cells[c]) g.driven[p] = m.blocks.driven[g.block[c]] & DriveAll;
+  for (const LoadedEdge& e : m.loadedEdges) {
+    const Vec2 force = m.loadedEdgeForce(e);
+    g.boundaryLoad[e.from] += 0.5 * force;
+    g.boundaryLoad[e.to] += 0.5 * force;
+  }
+}
 
 void cellDefaults(Grid& g, int kind, int block) {
   g.kind.push_back(kind);
@@ -167,6 +185,7 @@ Grid collect(const Model& m) {
     g.axialForce.back() = x.axialForce[i];
     g.beamShear.back() = x.shearForce[i];
   }
+  boundaryConditions(m, g);
   return g;
 }
 
@@ -248,6 +267,8 @@ void VtkSeries::write(const Model& m) {
   out << "</Cells>\n<PointData Vectors=\"displacement\">\n";
   vectorArray(out, "displacement", g.displacement);
   vectorArray(out, "velocity", g.velocity);
+  dataArray(out, "driven", g.driven, "Int32");
+  vectorArray(out, "boundary_load", g.boundaryLoad);
   if (m.heat.on) {
     // The gridpoints come first among the points; the others (rigid vertices, structures'
     // nodes, cells of joints and fluid) have no temperature.

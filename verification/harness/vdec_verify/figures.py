@@ -1,18 +1,37 @@
 """The figures of the reports, drawn with matplotlib's Figure objects (no pyplot, no display) into
 PNG files beside index.html, which report.pdf places with the same captions.
 
+Each problem's figures start with its set-up (set_up_figure): the model vdec builds from the first
+run's scene and overrides, at cycle 0, written by `vdec check SCENE --vtk DIR` into
+<run folder>/setup/ and drawn by vdec_plot (geometry, driven boundaries, loads, where the
+histories and the field checks sample).
+
 Every figure shows the error as well as the values: a series check gets the two curves and,
 below them on the same abscissa, vdec minus the closed form; the scalar checks of a problem get
 one panel of error over tolerance (1 is the limit of the pass rule); a convergence study gets
 error against zone size and error against wall time (work-precision).
 """
 import io
+import json
 import math
+import shlex
+import subprocess
+import sys
 import textwrap
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
+
+try:
+    import vdec_plot  # noqa: F401  (python/ is on PYTHONPATH when the tests or `vdec plot` run us)
+except ImportError:
+    sys.path.append(str(Path(__file__).resolve().parents[3] / "python"))
+from vdec_plot.errors import PlotError
+from vdec_plot.figures import plastic_result_figure, read_scene, setup_figure
+from vdec_plot.snapshot import read_snapshot
 
 DPI = 150
 PASS_COLOUR, FAIL_COLOUR = "tab:green", "tab:red"
@@ -218,10 +237,135 @@ def _ratio(value):
     return "" if value is None else f"{value:.3e}"
 
 
-def problem_figures(record):
+SETUP_FOLDER = "setup"
+SETUP_SECONDS = 60
+FIELD_EXTRACTS = ("field", "field_mean", "field_peak", "field_extent")
+
+
+def _check_command(run):
+    """`vdec check` of a run's scene with its overrides, writing the cycle-0 model into
+    <run folder>/setup; None when the run's command is not a `vdec run` one."""
+    words = shlex.split(run.get("command") or "")
+    if len(words) < 3 or words[1] != "run":
+        return None
+    command, skip = [words[0], "check", words[2]], False
+    for word, following in zip(words[3:], words[4:] + [""]):
+        if skip:
+            skip = False
+        elif word in ("--out", "--save", "--restart", "--threads"):  # run-only options and their values
+            skip = True
+        elif word == "--set":
+            command += ["--set", following]
+            skip = True
+        elif word == "--profile":
+            continue
+    return command + ["--vtk", str(Path(run["folder"]) / SETUP_FOLDER)]
+
+
+def _make_setup_model(record):
+    """(snapshot path or None, why not) of the problem's first run."""
+    if not record.get("runs"):
+        return None, "the problem has no run"
+    command = _check_command(record["runs"][0])
+    if command is None:
+        return None, "its run command is not `vdec run`"
+    try:
+        done = subprocess.run(command, capture_output=True, text=True, timeout=SETUP_SECONDS, stdin=subprocess.DEVNULL)
+    except (OSError, subprocess.TimeoutExpired) as e:
+        return None, f"`vdec check --vtk` did not finish: {e}"
+    snapshot = Path(command[-1]) / "snapshot_000000000.vtu"
+    if done.returncode != 0 or not snapshot.is_file():
+        last = (done.stderr.strip().splitlines() or ["no message"])[-1]
+        return None, f"`vdec check --vtk` exited {done.returncode}: {last}"
+    return snapshot, ""
+
+
+def setup_models(records, jobs=2):
+    """{problem id: (snapshot path or None, why not)}: each problem's model at cycle 0, built by
+    `vdec check` (jobs at a time)."""
+    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        made = pool.map(_make_setup_model, records)
+        return {r["id"]: m for r, m in zip(records, made)}
+
+
+def _field_samples(problem, record):
+    """[(label, x, y)]: the initial positions each field check of the problem samples, from the
+    results of the run it reads (the harness's own selection, fields._selected)."""
+    from vdec_verify.fields import _selected
+    folders = {run["variant"]: Path(run["folder"]) for run in record.get("runs") or []}
+    samples = []
+    for number, check in enumerate(problem.checks if problem else (), start=1):
+        if check.extract.get("kind") not in FIELD_EXTRACTS or check.variant not in folders:
+            continue
+        try:
+            results = json.loads((folders[check.variant] / "results.json").read_text())
+            _, mask, x, y, _, _ = _selected(results, check.extract)
+        except Exception:  # a check that cannot select says so in its own metric; no dots here
+            continue
+        samples.append((f"check #{number} samples ({check.extract['of']})", x[mask], y[mask]))
+    return samples
+
+
+def set_up_figure(record, snapshot_path, problem=None):
+    """The set-up figure of a problem from its cycle-0 model, or None when it cannot be drawn."""
+    run = record["runs"][0]
+    command = shlex.split(run["command"])
+    try:
+        snapshot = read_snapshot(snapshot_path, 0.0)
+    except PlotError:
+        return None
+    try:  # block names and contacts place the block and joint histories; a failed run has none
+        results = json.loads((Path(run["folder"]) / "results.json").read_text())
+    except (OSError, ValueError):
+        results = {}
+    names = [b.get("name", "") for b in results.get("blocks") or []]
+    variant = f" [{run['variant']}]" if run.get("variant") else ""
+    try:
+        fig = setup_figure(snapshot, read_scene(command[2]), names, results.get("contacts") or [],
+                           _field_samples(problem, record), title=f"{record['id']}{variant}: set-up at cycle 0")
+    except PlotError:
+        return None
+    return png_bytes(fig)
+
+
+def plastic_figure(record, snapshot_path):
+    """The plastic zones at the end of the first run on its cycle-0 mesh, when some zone yielded;
+    else None."""
+    run = record["runs"][0]
+    source = Path(run["folder"]) / "results.json"
+    try:
+        states = (json.loads(source.read_text()).get("zones") or {}).get("plastic_state") or []
+        if not any(states):
+            return None
+        return png_bytes(plastic_result_figure(read_snapshot(snapshot_path, 0.0), states, source,
+                                               title=f"{record['id']}: plastic state at the end"))
+    except (OSError, ValueError, PlotError):
+        return None
+
+
+def problem_figures(record, setup=None, problem=None):
     """The figures of one problem, in order: [{"name": file name, "png": bytes, "caption": text,
-    "wide": bool}]; the check numbers are those of the problem's check table (1 = first metric)."""
+    "wide": bool}]; the check numbers are those of the problem's check table (1 = first metric).
+    setup: (path of its cycle-0 snapshot or None, why not) from setup_models; problem: its loaded
+    problem.toml, for where its field checks sample."""
     pid, figures = record["id"], []
+    if setup is not None and setup[0] is not None:
+        png = set_up_figure(record, setup[0], problem)
+        if png is not None:
+            run = record["runs"][0]
+            figures.append({"name": f"{pid}-setup.png", "png": png, "wide": False, "caption":
+                            f"{pid}: set-up of the run {run.get('variant') or '(plain)'} at cycle 0, as "
+                            "`vdec check --vtk` builds it: blocks (grey rigid, hatched fixed; zones of deformable "
+                            "blocks in thin lines), gridpoints with a driven velocity component (x, y or both; "
+                            "zero when fixed), loads at the start (red arrows), where the histories sample "
+                            "(stars) and where the field checks sample (dots)."})
+        png = plastic_figure(record, setup[0])
+        if png is not None:
+            figures.append({"name": f"{pid}-plastic.png", "png": png, "wide": False, "caption":
+                            f"{pid}: plastic state of the Mohr-Coulomb zones at the end of the run "
+                            f"{run.get('variant') or '(plain)'} (results.json zones.plastic_state), drawn on the "
+                            "mesh at cycle 0: red yielding in shear in the last step, purple in tension, olive "
+                            "yielded before and elastic now, unfilled never yielded."})
     numbered = list(enumerate(record["metrics"], start=1))
     series = [(n, m) for n, m in numbered if (m.get("plot") or {}).get("kind") == "series"]
     scalars = [(n, m) for n, m in numbered if (m.get("plot") or {}).get("kind") == "scalar"]

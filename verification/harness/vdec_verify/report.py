@@ -15,7 +15,7 @@ from pathlib import Path
 
 
 from vdec_verify import PASS_RULE
-from vdec_verify.figures import problem_figures
+from vdec_verify.figures import problem_figures, setup_models
 from vdec_verify.pdf_report import write_pdf
 from vdec_verify.provenance import harness_info, software_of_runs
 
@@ -292,6 +292,16 @@ error and tolerance are relative to s as the pass rule states.</p>
     return path
 
 
+def _problem_of(problems_dir, problem_id):
+    """The loaded problem.toml of a problem, or None (no problems folder, or an invalid problem)."""
+    from vdec_verify.problem import ProblemError, load_problem
+    path = Path(problems_dir or "") / problem_id / "problem.toml"
+    try:
+        return load_problem(path) if problems_dir and path.is_file() else None
+    except ProblemError:
+        return None
+
+
 def write_reports(records, out, level="full", configuration=None, problems_dir=None, revision="1"):
     """Writes every report file into out; returns the summary as written. `level` is the suite
     level that was run: the traceability audit expects full-level problems only in a full run.
@@ -303,7 +313,8 @@ def write_reports(records, out, level="full", configuration=None, problems_dir=N
     out.mkdir(parents=True, exist_ok=True)
     harness = dict(harness_info(configuration), level=level)
     software, disagreements = software_of_runs(records)
-    figures = {r["id"]: problem_figures(r) for r in records}
+    setups = setup_models(records)
+    figures = {r["id"]: problem_figures(r, setups[r["id"]], _problem_of(problems_dir, r["id"])) for r in records}
     for figure in (f for listed in figures.values() for f in listed):
         (out / figure["name"]).write_bytes(figure["png"])
     write_summary(records, out, harness, software, disagreements)
