@@ -71,7 +71,7 @@ def problem_figure(problem_id, entries, baseline, thresholds, marks):
     runs = [(line, entry) for line, entry in entries if problem_id in entry["problems"]][-PLOTTED_RUNS:]
     x = np.arange(len(runs))
     fig = Figure(figsize=(10.0, 3.4))
-    grid = fig.add_gridspec(1, 3, width_ratios=(3.2, 1.3, 2.0), left=0.06, right=0.99, top=0.9, bottom=0.25,
+    grid = fig.add_gridspec(1, 3, width_ratios=(3.2, 1.1, 2.0), left=0.06, right=0.99, top=0.9, bottom=0.25,
                             wspace=0.35)
     errors, times, legend = fig.add_subplot(grid[0]), fig.add_subplot(grid[2]), fig.add_subplot(grid[1])
     labels = {}
@@ -102,6 +102,7 @@ def problem_figure(problem_id, entries, baseline, thresholds, marks):
         times.axhline(base["wall_seconds"], color="grey", ls=":", lw=1, label="baseline")
         limit = max(thresholds.time_factor * base["wall_seconds"], base["wall_seconds"] + thresholds.time_floor)
         times.axhline(limit, color="tab:red", ls=":", lw=1, label="limit")
+    times.set_ylim(bottom=0.0)
     times.set_title("wall seconds", fontsize=8)
     times.legend(fontsize=6, loc="best")
     lines = [line for line, _ in runs]
