@@ -73,11 +73,11 @@ class RepeatNeeded(Exception):
 
 def error_beyond(baseline_error, error, tolerance, factor, floor):
     """True when an error grew beyond factor times the baseline's and above floor times the
-    tolerance. A baseline error below zero (an upper bound met with room) counts as zero, so
-    that any excess above the floor is seen."""
+    tolerance. The floor is never below zero, so that an upper bound met with room (a baseline
+    error below zero) is flagged once its value passes the bound by more than the floor."""
     if error is None or baseline_error is None or not math.isfinite(error):
         return False
-    return error > factor * max(baseline_error, 0.0) and error > floor * (tolerance or 0.0)
+    return error > factor * baseline_error and error > floor * (tolerance or 0.0)
 
 
 def time_beyond(baseline_seconds, seconds, factor, floor):
