@@ -1,7 +1,7 @@
 """The nightly run (REQ-QA-011), its trend page (REQ-QA-013) and the baseline's acceptance
 (REQ-QA-014): the history file, the page and the baseline record on hand-made entries, then
 `vdec_verify nightly` and scripts/nightly.sh end to end with the fake vdec of the harness tests."""
-import copy
+import hashlib
 import json
 import os
 import subprocess
@@ -136,7 +136,6 @@ def test_accepting_a_baseline_records_who_and_why_and_keeps_earlier_acceptances(
     acceptances = json.loads(capsys.readouterr().out)["acceptances"]
     assert [(a["by"], a["note"], a["commit"][0]) for a in acceptances] == \
         [("A. Lead", "first nightly", "1"), ("B. Reviewer", "Kirsch error grew: finer zoning", "2")]
-    import hashlib
     assert acceptances[1]["summary_sha256"] == hashlib.sha256((tmp_path / "second.json").read_bytes()).hexdigest()
     assert json.loads((tmp_path / "baseline" / "summary.json").read_text())["software"]["git_commit"] == "2" * 40
     assert main(["baseline", "show", "--baseline", folder]) == 0
