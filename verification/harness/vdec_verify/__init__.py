@@ -24,7 +24,8 @@ Modules: problem (load and validate problem.toml), extract (what a check reads f
 norms (error norms, the pass rule and the independence guard), convergence (observed order,
 GCI and asymptotic ratio of a convergence study), runner (runs the solver in parallel), report
 (the report files), figures (their figures), pdf_report (report.pdf, typeset with ReportLab),
-provenance (software and harness information).
+provenance (software and harness information); for the nightly run (docs/user-manual/nightly.md:
+the `nightly`, `compare` and `baseline` commands) history, compare, baseline, trend and nightly.
 """
 
 __version__ = "1.0"

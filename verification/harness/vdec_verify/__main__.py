@@ -8,6 +8,9 @@ from vdec_verify import __doc__ as PACKAGE_DOC
 from vdec_verify.provenance import run_configuration
 from vdec_verify.report import write_reports
 from vdec_verify.runner import discover, run_suite, select
+from vdec_verify.baseline import add_baseline_parser, command_baseline
+from vdec_verify.compare import add_compare_parser, command_compare
+from vdec_verify.nightly import add_nightly_parser, command_nightly
 
 USAGE_ERROR = 2
 
@@ -29,6 +32,9 @@ def build_parser():
     check = commands.add_parser("check", help="only load and validate the problem files")
     check.add_argument("--problems", default="verification/problems")
     check.add_argument("--filter", nargs="+", action="extend", default=[], metavar="PATTERN")
+    add_compare_parser(commands)
+    add_baseline_parser(commands)
+    add_nightly_parser(commands)
     return parser
 
 
@@ -105,6 +111,12 @@ def main(argv=None):
         args = build_parser().parse_args(argv)
     except SystemExit as e:  # argparse: 0 after --help, 2 on a usage error
         return e.code if isinstance(e.code, int) else USAGE_ERROR
+    if args.command == "compare":
+        return command_compare(args)
+    if args.command == "baseline":
+        return command_baseline(args)
+    if args.command == "nightly":
+        return command_nightly(args, lambda argv: command_run(build_parser().parse_args(argv)))
     return command_run(args) if args.command == "run" else command_check(args)
 
 

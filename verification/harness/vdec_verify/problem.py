@@ -57,6 +57,10 @@ Keys of problem.toml:
                                   or "measured" (set from observed errors, with a margin)
     variant = "frac-0.5"          optional: the variant whose run the check reads; default the plain run
     refinement = true             optional, default false: the studied check of the [refinement] study
+    regression_factor = 5.0       optional, >= 1: how many times its error may grow over the nightly
+                                  baseline's before `vdec_verify compare` calls it a regression (default
+                                  vdec_verify.compare.DEFAULT_ERROR_FACTOR); for a check whose error is
+                                  round-off or noise that moves more than the default allows
 
     [refinement]                  optional; a convergence study over zone size (vdec_verify.convergence)
     expected_order = 2.0          required, > 0
@@ -126,7 +130,7 @@ PROBLEM_KEYS = ("id", "title", "requirements", "scene", "level", "overrides", "e
 PLANNED_KEYS = {}
 VARIANT_KEYS = ("name", "scene", "overrides", "expect_exit", "expect_message", "expect_stop", "restart_after")
 CHECK_KEYS = ("quantity", "extract", "reference", "norm", "rtol", "atol", "justification", "tolerance_basis",
-              "variant", "refinement")
+              "variant", "refinement", "regression_factor")
 MUTATION_KEYS = ("name", "overrides", "why", "runs")
 # run.stop_reason of results.json: the stop criterion met, or "error" for a run that ended on an error.
 STOP_REASONS = ("ratio", "cycles", "time")
@@ -192,6 +196,7 @@ class Check:
     variant: str         # "" for the plain run
     refinement: bool = False   # the studied check of the problem's [refinement] study
     tolerance_basis: str = "derived"   # "derived" or "measured"
+    regression_factor: float = None    # None: compare's default error growth factor
 
 
 @dataclass(frozen=True)
@@ -720,8 +725,14 @@ def load_problem(path):
                        ("is required" if "tolerance_basis" not in c else f"{basis!r} is not allowed") +
                        ": \"derived\" (the justification derives the tolerance from an error estimate) or "
                        "\"measured\" (set from the errors observed, with a margin)")
+        growth = c.get("regression_factor")
+        if "regression_factor" in c and not (_is_number(growth) and math.isfinite(growth) and growth >= 1.0):
+            errors.add(f"{where}.regression_factor", f"{growth!r} is not a finite number >= 1 (how many times the "
+                                                     "error may grow over the nightly baseline's)")
+            growth = None
         checks.append(Check(i, c.get("quantity", ""), c.get("extract"), reference, norm, rtol, atol,
-                            c.get("justification", ""), variant, studied, basis))
+                            c.get("justification", ""), variant, studied, basis,
+                            None if growth is None else float(growth)))
     if "refinement" in data and raw_checks and not any(c.refinement for c in checks):
         errors.add("refinement", "no [[check]] has refinement = true: the study has nothing to study")
     runs = list(variants)
