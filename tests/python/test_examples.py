@@ -2,6 +2,7 @@
 results consistent with the hand checks their READMEs work out."""
 import json
 import math
+import re
 import subprocess
 from pathlib import Path
 
@@ -147,3 +148,9 @@ def test_tutorial_scene_excavates_the_drift_and_its_roof_and_walls_move_in(tmp_p
     assert last(r, "roof_uy") < 0.0
     assert last(r, "wall_ux") < 0.0
     assert last(r, "ratio") < 1e-3
+
+
+def test_tutorial_fragments_in_order_make_the_tutorial_scene():
+    tutorial = (ROOT / "docs" / "user-manual" / "tutorial.md").read_text()
+    fragments = re.findall(r"```toml\n(.*?)```", tutorial, flags=re.S)
+    assert "\n".join(fragments) == (EXAMPLES / "tutorial" / "scene.toml").read_text()
