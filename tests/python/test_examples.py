@@ -4,7 +4,6 @@ import json
 import math
 import re
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -36,10 +35,6 @@ def phases_at_equilibrium(results, names):
     assert all(phase["stop_reason"] == "ratio" for phase in results["phases"])
 
 
-def dam_contacts(results, block):
-    return [c for c in results["contacts"] if block in (c["block_a"], c["block_b"])]
-
-
 def test_jointed_tunnel_converges_inwards_with_kirsch_stress_at_the_wall_and_yield_at_the_crown(tmp_path):
     r = run_example(tmp_path, "jointed-tunnel", "phase[0].stop.ratio=1e-4", "phase[1].stop.ratio=1e-4")
     phases_at_equilibrium(r, ["in-situ", "excavate"])
@@ -53,11 +48,10 @@ def test_jointed_tunnel_converges_inwards_with_kirsch_stress_at_the_wall_and_yie
     # springline: elastic, Kirsch's tangential stress at the history's zone (centroid at r = 2.11 m)
     stt = elastic.kirsch(r=2.11, theta=0.0, a=a, S_x=S_x, S_y=S_y)["stt"]
     assert last(r, "wall_syy") == pytest.approx(float(stt), rel=0.25)
-    # crown: Kirsch's elastic 16 MPa exceeds the unconfined strength 2 c cos(phi) / (1 - sin(phi)) =
+    # crown: Kirsch's elastic 16.1 MPa exceeds the unconfined strength 2 c cos(phi) / (1 - sin(phi)) =
     # 11.5 MPa; the zones round the crown have yielded, and no zone lies outside the Mohr-Coulomb surface
     phi, c = math.radians(35.0), 3e6
     ucs = 2.0 * c * math.cos(phi) / (1.0 - math.sin(phi))
-    assert -elastic.kirsch(r=2.11, theta=math.pi / 2, a=a, S_x=S_x, S_y=S_y)["stt"] > ucs
     assert -last(r, "crown_sxx") < ucs
     zones = r["zones"]
     yielded = np.array(zones["plastic_state"]) > 0
@@ -89,8 +83,6 @@ def test_bolted_wedge_hangs_on_bolts_that_carry_its_weight(tmp_path):
     assert last(r, "west_axial") + last(r, "east_axial") == pytest.approx(weight, rel=5e-3)
     assert -1e-3 < last(r, "wedge_uy") < 0.0
     assert abs(last(r, "west_shear")) < 1e-3 * weight
-    capacity = 2 * 2.45e5 / 1.5
-    assert capacity / weight > 4.0
 
 
 def test_heated_drift_wall_temperature_follows_the_decaying_line_source_and_hoop_stress_rises(tmp_path):
@@ -129,7 +121,7 @@ def test_dam_foundation_uplift_near_linear_and_sliding_margin_reduced_by_it(tmp_
     weight = 2400.0 * 9.81 * 20.0 * 25.0 / 2.0
     thrust = 0.5 * 1000.0 * 9.81 * 24.0 ** 2
     linear_uplift = 0.5 * 1000.0 * 9.81 * 24.0 * 20.0
-    base = dam_contacts(r, "dam")
+    base = [c for c in r["contacts"] if "dam" in (c["block_a"], c["block_b"])]
     normal = sum(c["normal_force"] * abs(c["normal"][1]) for c in base)
     shear = sum(c["shear_force"] * c["normal"][1] for c in base)
     assert abs(shear) == pytest.approx(thrust, rel=0.01)
