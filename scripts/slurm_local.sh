@@ -61,7 +61,9 @@ ReturnToService=2
 # Finished jobs stay visible to scontrol for ten minutes: without accounting, that is where
 # the executor reads the state of a task that failed.
 MinJobAge=600
-SchedulerParameters=defer_batch
+# Start a task as soon as a CPU is free, instead of batching the starts (3 s by default):
+# a sweep of short runs is all starts.
+SchedulerParameters=batch_sched_delay=0
 NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$memory_mb State=UNKNOWN
 PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF

@@ -32,13 +32,15 @@ def _positions(values):
 
 
 def _against_parameter(ax, records, column, key, others):
-    """Lines of the output against parameter key; a line for each value of the other parameters."""
+    """Lines of the output against parameter key; a line for each value of the other parameters.
+    A run of a listed design that does not set the key is not drawn."""
+    pairs = [(r, v) for r, v in zip(records, column) if key in r.run.settings]
     lines = {}
-    for record, value in zip(records, column):
+    for record, value in pairs:
         if record.ok and _number(value):
             other = tuple(record.run.settings.get(o) for o in others)
             lines.setdefault(other, {}).setdefault(record.run.settings[key], (record.run.values[key], []))[1].append(value)
-    all_values = [record.run.values[key] for record in records]
+    all_values = [record.run.values[key] for record, _ in pairs]
     _, labels = _positions(all_values)
     for other, points in lines.items():
         xs, labels_here = _positions([v for v, _ in points.values()])
@@ -50,8 +52,7 @@ def _against_parameter(ax, records, column, key, others):
         label = ", ".join(f"{o}={t}" for o, t in zip(others, other)) or None
         ax.errorbar(np.asarray(xs)[order], np.asarray(means)[order], yerr=np.asarray(sems)[order], marker="o",
                     capsize=3, label=label)
-    failed = [(record.run.values[key], value) for record, value in zip(records, column)
-              if not record.ok and _number(value)]
+    failed = [(record.run.values[key], value) for record, value in pairs if not record.ok and _number(value)]
     if failed:
         xs = [labels.index(str(v)) if labels is not None else float(v) for v, _ in failed]
         ax.plot(xs, [y for _, y in failed], "rx", label="failed runs")

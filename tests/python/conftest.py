@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-for sub in ("verification", "verification/harness", "qa/traceability"):
+for sub in ("verification", "verification/harness", "qa/traceability", "python"):
     path = str(ROOT / sub)
     if path not in sys.path:
         sys.path.insert(0, path)

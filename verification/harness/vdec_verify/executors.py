@@ -16,11 +16,12 @@ value: its outcome says why.
   directory, and submits one job array (`sbatch --array=0-(N-1) --wait`), one array task per
   spec. Each task runs `python -m vdec_verify.executors TASKS.JSON INDEX`, which calls the
   function and writes its value to results/INDEX.json in that folder. When the array has ended,
-  the values are gathered from there. A task without a value (failed, timed out, cancelled,
-  node lost) is looked up in Slurm (sacct, or scontrol when the cluster keeps no accounting),
-  and the missing tasks are submitted once more as a second array; those that fail again are
-  reported with their Slurm state and the tail of their log. Slurm alone decides where and when
-  tasks run.
+  the values are gathered from there. A task without a value (failed, timed out, node lost) is
+  looked up in Slurm (sacct, or scontrol when the cluster keeps no accounting), and the missing
+  tasks are submitted once more as a second array; those that fail again, and those cancelled
+  (scancel: someone meant them to stop), are reported with their Slurm state and the tail of
+  their log. Slurm alone decides where and when tasks run. sbatch runs in the caller's working
+  directory, so relative paths in specs hold when the nodes mount it at the same place.
 """
 import argparse
 import importlib
@@ -250,13 +251,15 @@ class SlurmExecutor:
                 outcomes[index] = TaskOutcome(ok=False, state=state, attempts=attempt,
                                               error=f"Slurm task {job_id}_{index} ended {state} without a result "
                                                     f"(attempt {attempt} of 2); log {log}:\n{_log_tail(log)}")
-                missing.append(index)
+                if not state.startswith("CANCELLED"):   # cancelled by someone: not ours to redo
+                    missing.append(index)
             pending = missing
             if not pending:
                 break
         if progress:
-            for index in pending:
-                progress(index, outcomes[index])
+            for index, outcome in enumerate(outcomes):
+                if not outcome.ok:
+                    progress(index, outcome)
         return outcomes
 
 

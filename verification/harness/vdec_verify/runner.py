@@ -528,8 +528,13 @@ def run_suite(entries, vdec, out, jobs=2, progress=_progress, level="full", exec
 
 
 @functools.lru_cache(maxsize=None)
-def _problem_at(path):
+def _loaded_problem(path, text):
     return load_problem(Path(path))
+
+
+def _problem_at(path):
+    """The problem of a problem.toml, loaded once for all its runs while its text is the same."""
+    return _loaded_problem(path, Path(path).read_text(encoding="utf-8"))
 
 
 def execute_task(spec):
