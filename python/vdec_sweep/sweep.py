@@ -131,7 +131,7 @@ def configure(args):
     executor = make_executor(kind, jobs, slurm_options_from(args, out / "slurm", base))
     return Sweep(scene=scene, out=out, vdec=vdec, keys=keys, runs=build_runs(combinations, seeds, regions),
                  outputs=outputs, seeds=seeds, quantiles=tuple(settings["quantiles"] or DEFAULT_QUANTILES),
-                 timeout=settings["timeout"] if settings["timeout"] is not None else args.timeout,
+                 timeout=args.timeout if args.timeout is not None else settings["timeout"],
                  executor=executor, design="list" if settings["runs"] is not None else settings["design"],
                  parameters=parameters)
 
