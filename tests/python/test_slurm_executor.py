@@ -17,10 +17,12 @@ from vdec_verify.__main__ import main as verify_main
 
 
 def _cluster_answers():
+    # A controller that answers does so in milliseconds; an installed Slurm without one retries for
+    # about ten seconds.
     if shutil.which("sinfo") is None:
         return False
     try:
-        return subprocess.run(["sinfo", "-h"], capture_output=True, timeout=20).returncode == 0
+        return subprocess.run(["sinfo", "-h"], capture_output=True, timeout=3).returncode == 0
     except (OSError, subprocess.TimeoutExpired):
         return False
 
