@@ -5,6 +5,7 @@ import sys
 from pathlib import Path
 
 from vdec_verify import __doc__ as PACKAGE_DOC
+from vdec_verify.executors import ExecutorError, add_executor_options, make_executor, slurm_options_from
 from vdec_verify.provenance import run_configuration
 from vdec_verify.report import write_reports
 from vdec_verify.runner import discover, run_suite, select
@@ -29,6 +30,7 @@ def build_parser():
     run.add_argument("--jobs", type=int, default=2, help="solver runs at a time (default 2)")
     run.add_argument("--out", default="reports/verification", help="report folder")
     run.add_argument("--revision", default="1", help="revision printed on report.pdf's title page (default 1)")
+    add_executor_options(run, "OUT/slurm")
     check = commands.add_parser("check", help="only load and validate the problem files")
     check.add_argument("--problems", default="verification/problems")
     check.add_argument("--filter", nargs="+", action="extend", default=[], metavar="PATTERN")
@@ -72,7 +74,11 @@ def command_run(args):
     # References that run a program of their own (the 50-digit CY joint reference) find it
     # beside the vdec executable the build put it next to.
     os.environ.setdefault("VDEC_EXECUTABLE", str(vdec.resolve()))
-    records = run_suite(entries, vdec.resolve(), out, args.jobs, level=args.level)
+    executor = make_executor(args.executor or "local", args.jobs, slurm_options_from(args, out / "slurm"))
+    try:
+        records = run_suite(entries, vdec.resolve(), out, args.jobs, level=args.level, executor=executor)
+    except ExecutorError as e:
+        return _usage_error(f"--executor {args.executor}: {e}")
     write_reports(records, out, level=args.level,
                   configuration=run_configuration(vdec.resolve(), problems, args.filter),
                   problems_dir=problems, revision=args.revision)

@@ -1,12 +1,14 @@
-"""Runs the selected problems with vdec (runs in parallel) and judges their checks.
+"""Runs the selected problems with vdec (runs in parallel, on an executor) and judges their checks.
 
 Each run is `vdec run SCENE --out OUT/runs/<ID>[/<variant or level>] [--set key=value ...]`;
 the run folder keeps results.json, command.txt, stdout.txt and stderr.txt. All runs of all
-problems share one pool of --jobs workers; the records come back sorted by problem id. A
+problems go to one executor (vdec_verify.executors: a local pool of
+--jobs workers, or a Slurm job array); the records come back sorted by problem id. A
 problem with a [refinement] study runs the levels of the suite's level (problem.runs_at) and
 gets a "convergence" record (vdec_verify.convergence).
 """
 import fnmatch
+import functools
 import hashlib
 import json
 import math
@@ -17,11 +19,11 @@ import subprocess
 import sys
 import time
 import tomllib
-from concurrent.futures import ThreadPoolExecutor, as_completed
-from dataclasses import dataclass, replace
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 from vdec_verify.convergence import convergence_study
+from vdec_verify.executors import LocalExecutor
 from vdec_verify.extract import ExtractError, Series, extract
 from vdec_verify.norms import ReferenceProblem, compare, evaluate_reference
 from vdec_verify.problem import PLAIN_RUN_LABEL, RUN_FILES, ProblemError, find_reference_function, load_problem
@@ -483,8 +485,9 @@ def _progress(text):
     print(text, file=sys.stderr, flush=True)
 
 
-def run_suite(entries, vdec, out, jobs=2, progress=_progress, level="full"):
-    """Runs every run of every valid entry (jobs at a time) and returns the records sorted by id.
+def run_suite(entries, vdec, out, jobs=2, progress=_progress, level="full", executor=None):
+    """Runs every run of every valid entry and returns the records sorted by id. executor
+    (vdec_verify.executors): where the runs go; default a local pool of `jobs`.
     level: the suite's level; a base suite runs only the base refinement levels."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -493,19 +496,25 @@ def run_suite(entries, vdec, out, jobs=2, progress=_progress, level="full"):
     if run_mutations(level):
         work += [(entry, run, mutation) for entry in entries if entry.problem is not None
                  for mutation in entry.problem.mutations for run in entry.problem.mutated_runs(mutation, level)]
-    outcomes = {}
-    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        futures = {pool.submit(execute, entry.problem, run, vdec, out, mutation):
-                   (entry.id, mutation.name if mutation else None, run.name) for entry, run, mutation in work}
-        for done, future in enumerate(as_completed(futures), start=1):
-            key = futures[future]
-            outcome = future.result()
-            outcomes[key] = outcome
-            if progress:
-                where = key[0] + (f" mutation {key[1]}" if key[1] else "") + (f"/{key[2]}" if key[2] else "")
-                ended = "did not finish" if outcome.exit_code is None else f"exit {outcome.exit_code}"
-                progress(f"[{done}/{len(work)}] {where}: {ended} in "
-                         f"{outcome.wall_seconds:.2f} s, {outcome.failure or 'as expected'}")
+    specs = [{"problem": str(entry.problem.path.resolve()), "run": run.name, "level": level,
+              "mutation": mutation.name if mutation else None, "vdec": str(vdec), "out": str(out)}
+             for entry, run, mutation in work]
+    keys = [(entry.id, mutation.name if mutation else None, run.name) for entry, run, mutation in work]
+    done = 0
+
+    def report(index, task):
+        nonlocal done
+        done += 1
+        if progress:
+            key = keys[index]
+            outcome = _outcome_of(task, work[index], out)
+            where = key[0] + (f" mutation {key[1]}" if key[1] else "") + (f"/{key[2]}" if key[2] else "")
+            ended = "did not finish" if outcome.exit_code is None else f"exit {outcome.exit_code}"
+            progress(f"[{done}/{len(work)}] {where}: {ended} in "
+                     f"{outcome.wall_seconds:.2f} s, {outcome.failure or 'as expected'}")
+
+    tasks = (executor or LocalExecutor(jobs)).run(execute_task, specs, report)
+    outcomes = {key: _outcome_of(task, item, out) for key, task, item in zip(keys, tasks, work)}
     records = []
     for entry in sorted(entries, key=lambda e: e.id):
         mine = {name: o for (problem_id, mutation, name), o in outcomes.items()
@@ -516,6 +525,40 @@ def run_suite(entries, vdec, out, jobs=2, progress=_progress, level="full"):
                                 if problem_id == entry.id and mutation == m.name} for m in entry.problem.mutations}
         records.append(judge(entry, mine, level, mutated))
     return records
+
+
+@functools.lru_cache(maxsize=None)
+def _loaded_problem(path, text):
+    return load_problem(Path(path))
+
+
+def _problem_at(path):
+    """The problem of a problem.toml, loaded once for all its runs while its text is the same."""
+    return _loaded_problem(path, Path(path).read_text(encoding="utf-8"))
+
+
+def execute_task(spec):
+    """One run of the suite as an executor's task: spec names the problem file, the suite level,
+    the run and the mutation (None for none); the value is the RunOutcome's fields as JSON."""
+    problem = _problem_at(spec["problem"])
+    mutation = None
+    runs = problem.runs_at(spec["level"])
+    if spec["mutation"] is not None:
+        mutation = next(m for m in problem.mutations if m.name == spec["mutation"])
+        runs = problem.mutated_runs(mutation, spec["level"])
+    run = next(r for r in runs if r.name == spec["run"])
+    outcome = execute(problem, run, spec["vdec"], spec["out"], mutation)
+    return {**asdict(outcome), "folder": str(outcome.folder), "command": [str(c) for c in outcome.command]}
+
+
+def _outcome_of(task, item, out):
+    """The RunOutcome of an executor's TaskOutcome; a task that did not finish (a Slurm task
+    that failed twice) is a failed run with the executor's reason."""
+    if task.ok:
+        return RunOutcome(**{**task.value, "folder": Path(task.value["folder"])})
+    entry, run, mutation = item
+    return RunOutcome(run.name, [], run_folder(out, entry.id, run, mutation), run.expect_exit,
+                      failure=f"the {task.state} task did not run: {task.error}")
 
 
 def run_mutations(level):

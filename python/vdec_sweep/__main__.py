@@ -1,0 +1,5 @@
+import sys
+
+from vdec_sweep.sweep import main
+
+sys.exit(main())
