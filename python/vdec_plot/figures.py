@@ -88,6 +88,8 @@ def model_figure(run, snapshot, chosen, size=(8.0, 6.0), title=None, scene=None,
         fig = Figure(figsize=size)
         ax = _model_axes(fig, wrapped(heading, 100) if title is None else title)
         drawn, notes = {}, [SIGN_NOTE]
+        # Scaled layers are sized against the region shown, so that a close-up stays readable.
+        shown = max(limits[1] - limits[0], limits[3] - limits[2]) if limits is not None else None
         if chosen.get("stress"):
             drawn["stress"] = layers.draw_stress(ax, snapshot, chosen["stress"], chosen.get("stress_range"))
         if chosen.get("plastic"):
@@ -98,7 +100,7 @@ def model_figure(run, snapshot, chosen, size=(8.0, 6.0), title=None, scene=None,
         if chosen.get("joints"):
             drawn["joints"] = layers.draw_joints(ax, run, snapshot, chosen["joints"])
         if chosen.get("forces"):
-            lines, forces = drawn["forces"] = layers.draw_forces(ax, run, snapshot)
+            lines, forces = drawn["forces"] = layers.draw_forces(ax, run, snapshot, extent=shown)
             notes.append(f"force lines along the contact normal, width and length proportional to |Fn|, "
                          f"largest {np.abs(forces).max():.3g} N/m; black compression, red tension")
         if chosen.get("principal"):
@@ -107,11 +109,11 @@ def model_figure(run, snapshot, chosen, size=(8.0, 6.0), title=None, scene=None,
                          "black compression, red tension")
         if chosen.get("displacement"):
             arrows, scale, largest = drawn["displacement"] = layers.draw_displacement(
-                ax, snapshot, chosen.get("displacement_scale"))
+                ax, snapshot, chosen.get("displacement_scale"), extent=shown)
             notes.append(f"displacement vectors drawn {scale:.4g} times their length (largest |u| {largest:.3g} m)")
         if chosen.get("boundaries"):
             boundaries = drawn["boundaries"] = layers.draw_boundaries(
-                ax, snapshot, rigid_forces(scene, snapshot, run.block_names()))
+                ax, snapshot, rigid_forces(scene, snapshot, run.block_names()), extent=shown)
             if boundaries["loads"] is not None:
                 notes.append(f"load arrows {boundaries['scale']:.4g} m per N/m")
             places = layers.history_locations(scene, snapshot, run.block_names(),
@@ -182,7 +184,7 @@ def setup_figure(snapshot, scene, block_names, contacts=(), samples=(), title=""
             handles.append(ax.plot(xs, ys, ls="none", marker="o", ms=2.5, color=layers.SAMPLE_COLOUR if k == 0
                                    else f"C{k}", zorder=8, label=label)[0])
         if handles:
-            ax.legend(handles=handles, loc="best", fontsize=6)
+            layers.add_legend(ax, "sampled", handles)
         ax.autoscale_view()
         ax.margins(0.05)
         notes = [f"load arrows {boundaries['scale']:.4g} m per N/m, at cycle 0"] if boundaries["loads"] else []

@@ -10,6 +10,7 @@ import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
+from matplotlib.ticker import FuncFormatter
 
 from vdec_plot.errors import NO_DATA, PlotError
 from vdec_plot.snapshot import BEAM_ELEMENT, BOLT, CABLE_ELEMENT, RIGID_BLOCK, ZONE
@@ -40,6 +41,25 @@ def model_extent(snapshot):
         return 1.0
     span = points.max(axis=0) - points.min(axis=0)
     return float(max(span.max(), 1e-12))
+
+
+def add_legend(ax, title, handles):
+    """Adds a titled section to the axes' one legend, redrawn with every section so far: layers
+    drawn together share it, where separate legends would cover each other (each at loc "best")
+    and a later ax.legend() call would drop an earlier layer's."""
+    sections = ax.__dict__.setdefault("vdec_legend_sections", [])
+    sections.append((title, list(handles)))
+    if ax.get_legend() is not None:
+        ax.get_legend().remove()
+    entries, headings = [], []
+    for heading, section in sections:
+        headings.append(len(entries))
+        entries.append(Patch(visible=False, label=heading))
+        entries.extend(section)
+    legend = ax.legend(handles=entries, loc="best", fontsize=7)
+    for i in headings:
+        legend.get_texts()[i].set_fontweight("bold")
+    return legend
 
 
 def snapshot_body_cells(snapshot):
@@ -97,7 +117,7 @@ def draw_geometry(ax, snapshot, simply_deformable=(), fixed_hatch=False, stress_
                                                             zorder=4))
             handles.append(Line2D([], [], color=colour, lw=1.8, label=f"{label} elements ({cells.size})"))
     if handles:
-        ax.add_artist(ax.legend(handles=handles, loc="best", fontsize=7, title="supports", title_fontsize=7))
+        add_legend(ax, "supports", handles)
     ax.autoscale_view()
     return drawn
 
@@ -119,18 +139,58 @@ def joint_state(contact):
     return "closed"
 
 
-def _contact_segments(contacts, half_length_of, along_normal):
+def _normal_segments(contacts, half_length_of):
     segments = []
     for c in contacts:
         (px, py), (nx, ny) = c["point"], c["normal"]
-        dx, dy = (nx, ny) if along_normal else (ny, -nx)
         h = half_length_of(c)
-        segments.append([(px - h * dx, py - h * dy), (px + h * dx, py + h * dy)])
+        segments.append([(px - h * nx, py - h * ny), (px + h * nx, py + h * ny)])
+    return segments
+
+
+def block_points(snapshot):
+    """{block index: (k, 2) array}: a rigid block's vertices, a deformable block's gridpoints."""
+    kinds, blocks = snapshot.cell_data["kind"], snapshot.cell_data["block"]
+    indices = {}
+    for cell in np.flatnonzero((kinds == ZONE) | (kinds == RIGID_BLOCK)):
+        indices.setdefault(int(blocks[cell]), []).append(snapshot.cells[cell])
+    return {block: snapshot.points[np.unique(np.concatenate(cells))] for block, cells in indices.items()}
+
+
+def joint_segments(contacts, snapshot, block_names, shortest):
+    """Each contact's segment along its joint: as long as its contact length (at least shortest),
+    centred on its point, but moved along the joint where that would take it beyond either block,
+    as at a joint's end, and shortened where the blocks share less than that length. A block's
+    extent along the joint is that of its vertices or gridpoints on the joint's line."""
+    points = block_points(snapshot)
+    index = {name: i for i, name in enumerate(block_names)}
+    on_line = 1e-3 * model_extent(snapshot)
+    segments = []
+    for c in contacts:
+        p, n = np.asarray(c["point"], dtype=float), np.asarray(c["normal"], dtype=float)
+        along = np.array([n[1], -n[0]])
+        length = max(c.get("length", 0.0), shortest)
+        low, high = -math.inf, math.inf
+        for name in (c.get("block_a"), c.get("block_b")):
+            vertices = points.get(index.get(name))
+            if vertices is None:
+                continue
+            offsets = vertices - p
+            shared = np.abs(offsets @ n) <= on_line
+            if shared.any():
+                positions = offsets[shared] @ along
+                low, high = max(low, float(positions.min())), min(high, float(positions.max()))
+        start = -0.5 * length
+        if low < high:
+            length = min(length, high - low)
+            start = min(max(start, low), high - length)
+        segments.append([p + start * along, p + (start + length) * along])
     return segments
 
 
 def draw_joints(ax, run, snapshot, colour_by="state"):
-    """Each contact as a segment of its length along the joint at its point. colour_by "state":
+    """Each contact as a segment of its length along the joint at its point, kept on its two
+    blocks (joint_segments). colour_by "state":
     open, slipping, closed with a broken bond (model 5), closed (JOINT_COLOURS); "shear": the
     magnitude of its accumulated shear displacement (m), on a colour bar. Returns the
     LineCollection (its colours per segment, in results.json's contact order)."""
@@ -139,14 +199,14 @@ def draw_joints(ax, run, snapshot, colour_by="state"):
     if not contacts:
         raise PlotError(NO_DATA, f"--joints: {run.folder / 'results.json'} lists no contacts")
     shortest = 0.005 * model_extent(snapshot)
-    segments = _contact_segments(contacts, lambda c: 0.5 * max(c.get("length", 0.0), shortest), along_normal=False)
+    segments = joint_segments(contacts, snapshot, run.block_names(), shortest)
     if colour_by == "state":
         states = [joint_state(c) for c in contacts]
         lines = LineCollection(segments, colors=[JOINT_COLOURS[s] for s in states], linewidths=2.0, zorder=5)
         ax.add_collection(lines)
         present = [s for s in JOINT_COLOURS if s in states]
-        ax.legend(handles=[Line2D([], [], color=JOINT_COLOURS[s], lw=2, label=f"{s} ({states.count(s)})")
-                           for s in present], loc="best", fontsize=7, title="joints", title_fontsize=7)
+        add_legend(ax, "joints", [Line2D([], [], color=JOINT_COLOURS[s], lw=2, label=f"{s} ({states.count(s)})")
+                                  for s in present])
         return lines
     shear = np.abs([c.get("shear_displacement", 0.0) for c in contacts])
     lines = LineCollection(segments, cmap="plasma", linewidths=2.0, zorder=5)
@@ -157,10 +217,11 @@ def draw_joints(ax, run, snapshot, colour_by="state"):
     return lines
 
 
-def draw_forces(ax, run, snapshot, largest_width=4.0):
+def draw_forces(ax, run, snapshot, largest_width=4.0, extent=None):
     """The contacts' normal forces as segments along the contact normal through the contact point,
     their widths proportional to |Fn| (the largest largest_width points) and their lengths too (the
-    largest 6 % of the model's size): black in compression, red in tension. Open contacts, with no
+    largest 6 % of extent, the size of the region shown, by default the model's): black in compression,
+    red in tension. Open contacts, with no
     force, are not drawn. Returns (LineCollection, forces drawn in N/m)."""
     _require_end(run, snapshot, "forces")
     contacts = [c for c in run.results.get("contacts") or [] if c.get("normal_force", 0.0) != 0.0]
@@ -168,8 +229,8 @@ def draw_forces(ax, run, snapshot, largest_width=4.0):
         raise PlotError(NO_DATA, f"--forces: {run.folder / 'results.json'} has no contact carrying a normal force")
     forces = np.array([c["normal_force"] for c in contacts])
     largest = float(np.abs(forces).max())
-    half = 0.03 * model_extent(snapshot)
-    segments = _contact_segments(contacts, lambda c: half * abs(c["normal_force"]) / largest, along_normal=True)
+    half = 0.03 * (extent or model_extent(snapshot))
+    segments = _normal_segments(contacts, lambda c: half * abs(c["normal_force"]) / largest)
     lines = LineCollection(segments, colors=[COMPRESSION_COLOUR if f > 0 else TENSION_COLOUR for f in forces],
                            linewidths=np.maximum(largest_width * np.abs(forces) / largest, 0.2), zorder=6,
                            capstyle="butt")
@@ -206,9 +267,10 @@ def stress_values(snapshot, cells, component):
 
 
 def draw_stress(ax, snapshot, component, limits=None):
-    """Zones and simply-deformable blocks filled with one stress component (Pa, tension positive),
+    """Zones and simply-deformable blocks filled with one stress component (tension positive),
     constant over each zone as the constant-strain triangle's stress is; the colour range is the
-    data's unless limits (low, high) are given. Returns the PolyCollection."""
+    data's unless limits (low, high, Pa) are given; the colour bar reads in MPa, kPa or Pa
+    (stress_unit). Returns the PolyCollection."""
     cells = _stressed_cells(snapshot)
     if not cells.size:
         raise PlotError(NO_DATA, f"--stress: {snapshot.path} has no zones or simply-deformable blocks, whose stress it "
@@ -221,8 +283,20 @@ def draw_stress(ax, snapshot, component, limits=None):
     filled.set_array(values)
     filled.set_clim(low, high)
     ax.add_collection(filled)
-    ax.figure.colorbar(filled, ax=ax, shrink=0.8, label=f"{STRESS_MEANINGS[component]} (Pa, tension positive)")
+    unit, pascals = stress_unit(max(abs(low), abs(high)))
+    # Ticks read in the unit named, without the "1e7" offset above the bar that is easily missed.
+    bar = ax.figure.colorbar(filled, ax=ax, shrink=0.8, label=f"{STRESS_MEANINGS[component]} ({unit}, tension positive)",
+                             format=FuncFormatter(lambda value, _: f"{value / pascals:g}"))
+    bar.ax.yaxis.get_offset_text().set_visible(False)
     return filled
+
+
+def stress_unit(largest):
+    """(unit, Pa per unit) in which stresses up to `largest` Pa read best: MPa, kPa or Pa."""
+    for unit, pascals in (("MPa", 1e6), ("kPa", 1e3)):
+        if largest >= pascals:
+            return unit, pascals
+    return "Pa", 1.0
 
 
 def draw_principal(ax, snapshot):
@@ -273,16 +347,16 @@ def displacement_points(snapshot):
     return np.concatenate(at), np.concatenate(values)
 
 
-def draw_displacement(ax, snapshot, scale=None):
+def draw_displacement(ax, snapshot, scale=None, extent=None):
     """Displacement vectors drawn `scale` times their length (default: the largest as long as 8 %
-    of the model's size), at the gridpoints and the rigid blocks' vertex means. Returns
+    of extent, the size of the region shown, by default the model's), at the gridpoints and the rigid blocks' vertex means. Returns
     (Quiver, scale used, largest |u| in m)."""
     at, u = displacement_points(snapshot)
     magnitude = np.hypot(u[:, 0], u[:, 1]) if u.size else np.zeros(0)
     if not magnitude.size or magnitude.max() == 0.0:
         raise PlotError(NO_DATA, f"--displacement: nothing has moved in {snapshot.path} (every displacement is zero)")
     largest = float(magnitude.max())
-    scale = scale if scale is not None else 0.08 * model_extent(snapshot) / largest
+    scale = scale if scale is not None else 0.08 * (extent or model_extent(snapshot)) / largest
     arrows = ax.quiver(at[:, 0], at[:, 1], u[:, 0], u[:, 1], angles="xy", scale_units="xy", scale=1.0 / scale,
                        color="tab:green", width=0.003, zorder=7)
     return arrows, scale, largest
@@ -316,11 +390,9 @@ def fill_plastic_states(ax, snapshot, states, source):
                                 facecolors=[PLASTIC_COLOURS[labels[i]] for i in filled], edgecolors="none", zorder=1.6)
     ax.add_collection(collection)
     present = [s for s in PLASTIC_COLOURS if s in labels]
-    legend = ax.legend(handles=[Patch(color=PLASTIC_COLOURS[s], label=f"{s} ({labels.count(s)})") for s in present]
-                       + [Patch(facecolor="none", edgecolor=ZONE_EDGE_COLOUR,
-                                label=f"never yielded ({labels.count(None)})")],
-                       loc="best", fontsize=7, title="plastic state", title_fontsize=7)
-    ax.add_artist(legend)
+    add_legend(ax, "plastic state",
+               [Patch(color=PLASTIC_COLOURS[s], label=f"{s} ({labels.count(s)})") for s in present]
+               + [Patch(facecolor="none", edgecolor=ZONE_EDGE_COLOUR, label=f"never yielded ({labels.count(None)})")])
     return collection, labels
 
 
@@ -328,14 +400,14 @@ DRIVEN_MARKERS = {1: (">", "x driven"), 2: ("^", "y driven"), 3: ("s", "x and y 
 LOAD_COLOUR, HISTORY_COLOUR, SAMPLE_COLOUR = "tab:red", "tab:cyan", "tab:pink"
 
 
-def draw_boundaries(ax, snapshot, rigid_forces=(), scale=None):
+def draw_boundaries(ax, snapshot, rigid_forces=(), scale=None, extent=None):
     """The boundary conditions the snapshot records (its `driven` and `boundary_load` point
     arrays): gridpoints with a driven velocity component (zero when fixed) marked by component
     (DRIVEN_MARKERS), rigid blocks with every degree of freedom driven hatched (by draw_geometry)
     and partly driven ones marked with a diamond, and the loads as red arrows: the loaded edges'
     forces on their gridpoints at the snapshot's time, and rigid_forces [(x, y, fx, fy)] (a block's
-    applied force at its centroid), the largest as long as 8 % of the model's size unless scale
-    (m per N/m) is given. Returns {"driven": {bits: count}, "loads": Quiver or None, "scale": scale}."""
+    applied force at its centroid), the largest as long as 8 % of extent (the size of the region
+    shown, by default the model's) unless scale (m per N/m) is given. Returns {"driven": {bits: count}, "loads": Quiver or None, "scale": scale}."""
     if not snapshot.has_boundary_conditions():
         raise PlotError(NO_DATA, f"--boundaries: {snapshot.path} has no `driven` and `boundary_load` arrays (written by "
                                  "vdec builds after 0.1.0's boundary-condition output); run the scene again with this vdec")
@@ -363,12 +435,12 @@ def draw_boundaries(ax, snapshot, rigid_forces=(), scale=None):
     arrows = None
     if vectors.size:
         largest = float(np.hypot(vectors[:, 2], vectors[:, 3]).max())
-        scale = scale if scale is not None else 0.08 * model_extent(snapshot) / largest
+        scale = scale if scale is not None else 0.08 * (extent or model_extent(snapshot)) / largest
         arrows = ax.quiver(vectors[:, 0], vectors[:, 1], vectors[:, 2], vectors[:, 3], angles="xy", scale_units="xy",
                            scale=1.0 / scale, color=LOAD_COLOUR, width=0.004, zorder=8)
         handles.append(Line2D([], [], color=LOAD_COLOUR, marker=">", label=f"load (largest {largest:.3g} N/m)"))
     if handles:
-        ax.add_artist(ax.legend(handles=handles, loc="best", fontsize=7, title="boundaries", title_fontsize=7))
+        add_legend(ax, "boundaries", handles)
     return {"driven": counts, "loads": arrows, "scale": scale}
 
 
@@ -420,6 +492,11 @@ def draw_points(ax, places, colour, marker, label):
     xy = np.array([(x, y) for _, x, y in places])
     drawn = ax.plot(xy[:, 0], xy[:, 1], ls="none", marker=marker, ms=7, mfc=colour, mec="black", mew=0.5, zorder=9,
                     label=label)[0]
+    # Histories sampled at one place (a block's displacement and rotation) share one label, where
+    # separate labels would be printed over each other.
+    names_at = {}
     for name, x, y in places:
-        ax.annotate(name, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=6, zorder=9)
+        names_at.setdefault((x, y), []).append(name)
+    for (x, y), names in names_at.items():
+        ax.annotate(", ".join(names), (x, y), textcoords="offset points", xytext=(4, 4), fontsize=6, zorder=9)
     return drawn

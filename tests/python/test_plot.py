@@ -238,3 +238,98 @@ def test_vdec_plot_runs_the_package_with_its_exit_code(tmp_path):
     done = subprocess.run([VDEC, "plot", str(tmp_path / "nowhere")], capture_output=True, text=True, timeout=60,
                           env=env)
     assert done.returncode == errors.NO_RESULTS and "no such run folder" in done.stderr
+
+
+def _legend_texts(ax):
+    from matplotlib.legend import Legend
+    legends = [artist for artist in ax.findobj(Legend)]
+    return legends, [text.get_text() for legend in legends for text in legend.get_texts()]
+
+
+@pytest.mark.requirements("REQ-IO-014")
+def test_layers_drawn_together_share_one_legend_that_keeps_every_layers_entries(runs):
+    """Separate legends at loc="best" covered each other, and a layer's ax.legend() dropped the
+    joints' legend drawn before it."""
+    run = load_run(runs["jointed"])
+    snapshot = run.snapshot("last")
+    from vdec_plot.cli import scene_of
+    fig, _ = model_figure(run, snapshot, {"joints": "state", "boundaries": True}, scene=scene_of(run, str(
+        FIXTURES / "jointed_slope.toml")))
+    legends, texts = _legend_texts(fig.axes[0])
+    assert len(legends) == 1
+    assert "joints" in texts and "boundaries" in texts
+    assert any(t.startswith("open (") for t in texts) and "block fixed" in texts
+
+
+def _block_boxes(snapshot, run):
+    from vdec_plot.layers import block_points
+    index = {name: i for i, name in enumerate(run.block_names())}
+    points = block_points(snapshot)
+    return {name: (points[i].min(axis=0), points[i].max(axis=0)) for name, i in index.items()}
+
+
+@pytest.mark.requirements("REQ-IO-014")
+def test_joint_segments_stay_on_both_blocks_of_their_contact(runs):
+    """A contact at a joint's end used to be drawn centred on its point, half of it beyond the
+    blocks; it is moved along the joint onto both blocks, as long as its contact length where the
+    joint is long enough."""
+    run = load_run(runs["jointed"])
+    snapshot, drawn = _figure(run, joints="state")
+    boxes = _block_boxes(snapshot, run)
+    from vdec_plot.layers import model_extent
+    # A corner-to-corner contact, with no length along a joint, is a short mark centred on its point.
+    tolerance = 0.5 * 0.005 * model_extent(snapshot)
+    moved = 0
+    for contact, segment in zip(run.results["contacts"], drawn["joints"].get_segments()):
+        for name in (contact["block_a"], contact["block_b"]):
+            low, high = boxes[name]
+            assert np.all(segment >= low - tolerance) and np.all(segment <= high + tolerance), (contact, segment)
+        length = float(np.hypot(*(segment[1] - segment[0])))
+        assert length <= max(contact["length"], 2.0 * tolerance) + 1e-12
+        moved += not np.allclose(segment.mean(axis=0), contact["point"], rtol=0, atol=1e-9)
+    assert moved > 0, "the fixture should have contacts at the ends of joints"
+
+
+@pytest.mark.requirements("REQ-IO-014")
+def test_scaled_layers_follow_the_window_when_one_is_given(runs):
+    """Displacement arrows, force lines and load arrows are scaled to the region shown: against
+    the whole model they were far too long in a close-up window."""
+    run = load_run(runs["tunnel"])
+    snapshot = run.snapshot("last")
+    from vdec_plot.layers import model_extent
+    whole = model_figure(run, snapshot, {"displacement": True, "boundaries": True})[1]
+    window = (0.0, 1.0, 0.0, 1.0)
+    close = model_figure(run, snapshot, {"displacement": True, "boundaries": True}, limits=window)[1]
+    _, scale, largest = close["displacement"]
+    assert scale * largest == pytest.approx(0.08 * 1.0, rel=1e-12, abs=0)
+    assert whole["displacement"][1] * largest == pytest.approx(0.08 * model_extent(snapshot), rel=1e-12, abs=0)
+    assert close["boundaries"]["scale"] == pytest.approx(whole["boundaries"]["scale"] / model_extent(snapshot),
+                                                         rel=1e-12, abs=0)
+    jointed = load_run(runs["jointed"])
+    snapshot = jointed.snapshot("last")
+    lines, forces = model_figure(jointed, snapshot, {"forces": True}, limits=(0.0, 2.0, -0.5, 0.5))[1]["forces"]
+    longest = max(float(np.hypot(*(s[1] - s[0]))) for s in lines.get_segments())
+    assert longest == pytest.approx(0.06 * 2.0, rel=1e-9, abs=0)
+
+
+@pytest.mark.requirements("REQ-IO-014")
+def test_history_places_at_one_point_share_one_label():
+    from vdec_plot.layers import draw_points
+    ax = Figure().add_subplot()
+    draw_points(ax, [("dam_ux", 7.0, 8.0), ("dam_rotation", 7.0, 8.0), ("p_toe", 17.5, 0.0)], "cyan", "*", "history")
+    assert sorted(t.get_text() for t in ax.texts) == ["dam_ux, dam_rotation", "p_toe"]
+
+
+@pytest.mark.requirements("REQ-IO-014")
+def test_stress_colour_bar_reads_in_megapascals_for_rock_stresses(runs):
+    run = load_run(runs["tunnel"])
+    snapshot = run.snapshot("last")
+    fig, drawn = model_figure(run, snapshot, {"stress": "syy"})
+    fig.canvas.draw()
+    bar = drawn["stress"].colorbar
+    assert "(MPa, tension positive)" in bar.ax.get_ylabel()
+    ticks = [t for t in bar.ax.get_yticks() if bar.vmin <= t <= bar.vmax]
+    labels = [t.get_text().replace("\u2212", "-") for t in bar.ax.get_yticklabels()
+              if bar.vmin <= t.get_position()[1] <= bar.vmax]
+    assert [float(label) for label in labels] == pytest.approx([t / 1e6 for t in ticks], rel=1e-9, abs=1e-12)
+    assert bar.ax.yaxis.get_offset_text().get_text() == ""
