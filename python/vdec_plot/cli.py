@@ -1,5 +1,6 @@
 """`vdec plot DIR [options]`: the command line (docs/user-manual/plot.md)."""
 import argparse
+import re
 import sys
 from pathlib import Path
 
@@ -13,7 +14,13 @@ MAP_LAYERS = ("geometry", "joints", "forces", "stress", "principal", "displaceme
 
 
 class Parser(argparse.ArgumentParser):
-    """argparse, with its usage errors raised as PlotError so that they share the exit-code table."""
+    """argparse, with its usage errors raised as PlotError so that they share the exit-code table,
+    and negative numbers in exponent notation (a stress range of -7e7 -1e7) taken as values: the
+    stock matcher knows only -7 and -0.5, and takes -7e7 for an option."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 
     def error(self, message):
         raise PlotError(USAGE, message)

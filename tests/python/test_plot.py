@@ -333,3 +333,13 @@ def test_stress_colour_bar_reads_in_megapascals_for_rock_stresses(runs):
               if bar.vmin <= t.get_position()[1] <= bar.vmax]
     assert [float(label) for label in labels] == pytest.approx([t / 1e6 for t in ticks], rel=1e-9, abs=1e-12)
     assert bar.ax.yaxis.get_offset_text().get_text() == ""
+
+
+@pytest.mark.requirements("REQ-IO-014")
+def test_negative_values_in_exponent_notation_are_numbers_not_options(runs, tmp_path):
+    """Rock stresses are negative (tension positive) and written -7e7: argparse took such a value
+    for an option and stopped with "expected 2 arguments"."""
+    out = tmp_path / "range.png"
+    assert main([str(runs["tunnel"]), "--stress", "min", "--stress-range", "-4.5e7", "-1E6", "--window", "-1e-1", "4",
+                 "-0.1", "4", "--out", str(out)]) == 0
+    assert out.is_file()
