@@ -9,7 +9,8 @@ histories and the field checks sample).
 Every figure shows the error as well as the values: a series check gets the two curves and,
 below them on the same abscissa, vdec minus the closed form; the scalar checks of a problem get
 one panel of error over tolerance (1 is the limit of the pass rule); a convergence study gets
-error against zone size and error against wall time (work-precision).
+error against zone size and error against wall time (work-precision). The work-precision panels
+also draw the committed baseline's curve (grey, dashed; vdec_verify.work_precision).
 """
 import io
 import json
