@@ -4,7 +4,8 @@ Usage, from the repository root:
 
     PYTHONPATH=verification/harness:verification /usr/bin/python3 -m vdec_verify run --vdec build/vdec \
         [--problems verification/problems] [--filter ID_SUBSTRING_OR_GLOB ...] [--level base|full] \
-        [--jobs 2] [--out reports/verification] [--revision 1] [--executor local|slurm ...]
+        [--jobs 2] [--out reports/verification] [--revision 1] [--executor local|slurm ...] \
+        [--work-precision-baseline verification/baselines/work-precision.json]
     PYTHONPATH=verification/harness:verification /usr/bin/python3 -m vdec_verify check [--problems ...]
 
 `run` runs every selected problem (one folder per problem under --problems, each with a
@@ -25,8 +26,10 @@ norms (error norms, the pass rule and the independence guard), convergence (obse
 GCI and asymptotic ratio of a convergence study), runner (runs the solver in parallel), executors
 (where the runs go: a local pool or a Slurm job array), report
 (the report files), figures (their figures), pdf_report (report.pdf, typeset with ReportLab),
-provenance (software and harness information); for the nightly run (docs/user-manual/nightly.md:
-the `nightly`, `compare` and `baseline` commands) history, compare, baseline, trend and nightly.
+provenance (software and harness information), work_precision (the committed work-precision
+baseline, `baseline work-precision`, and the report's comparison with it); for the nightly run
+(docs/user-manual/nightly.md: the `nightly`, `compare` and `baseline` commands) history, compare,
+baseline, trend and nightly.
 """
 
 __version__ = "1.0"

@@ -12,6 +12,7 @@ from vdec_verify.runner import discover, run_suite, select
 from vdec_verify.baseline import add_baseline_parser, command_baseline
 from vdec_verify.compare import add_compare_parser, command_compare
 from vdec_verify.nightly import add_nightly_parser, command_nightly
+from vdec_verify.work_precision import BaselineError, load_for_report, shown_path, DEFAULT_FILE
 
 USAGE_ERROR = 2
 
@@ -30,6 +31,8 @@ def build_parser():
     run.add_argument("--jobs", type=int, default=2, help="solver runs at a time (default 2)")
     run.add_argument("--out", default="reports/verification", help="report folder")
     run.add_argument("--revision", default="1", help="revision printed on report.pdf's title page (default 1)")
+    run.add_argument("--work-precision-baseline", metavar="FILE",
+                     help=f"the work-precision curves the report compares with (default {shown_path(DEFAULT_FILE)})")
     add_executor_options(run, "OUT/slurm")
     check = commands.add_parser("check", help="only load and validate the problem files")
     check.add_argument("--problems", default="verification/problems")
@@ -70,6 +73,10 @@ def command_run(args):
     entries = select(discover(problems), args.level, args.filter)
     if not entries:
         return _usage_error(f"no problems in {problems} match level {args.level} and filter {args.filter or '(none)'}")
+    try:    # read before the suite: a corrupt baseline should not cost a suite's run time
+        baseline = load_for_report(args.work_precision_baseline)
+    except BaselineError as e:
+        return _usage_error(f"--work-precision-baseline: {e}")
     out = Path(args.out)
     # References that run a program of their own (the 50-digit CY joint reference) find it
     # beside the vdec executable the build put it next to.
@@ -81,7 +88,7 @@ def command_run(args):
         return _usage_error(f"--executor {args.executor}: {e}")
     write_reports(records, out, level=args.level,
                   configuration=run_configuration(vdec.resolve(), problems, args.filter),
-                  problems_dir=problems, revision=args.revision)
+                  problems_dir=problems, revision=args.revision, work_precision_baseline=baseline)
     print_table(records)
     print(f"reports in {out}/ (index.html, report.pdf, summary.json, junit.xml)")
     passed = sum(r["status"] == "pass" for r in records)

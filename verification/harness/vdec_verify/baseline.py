@@ -3,6 +3,9 @@ who accepted it and why.
 
     python -m vdec_verify baseline accept [SUMMARY] --note "why" [--by NAME] [--baseline DIR]
     python -m vdec_verify baseline show [--baseline DIR] [--json]
+    python -m vdec_verify baseline work-precision SUMMARY --note "why" [--by NAME] [--out FILE]
+
+(the last takes the committed work-precision curves: vdec_verify.work_precision).
 
 DIR (default reports/baseline) holds summary.json, a copy of the accepted summary, and
 baseline.json (schema vdec.nightly-baseline/1): {"acceptances": [...]}, oldest first, each
@@ -20,6 +23,7 @@ import sys
 from pathlib import Path
 
 from vdec_verify.history import RecordError, SUMMARY_SCHEMA
+from vdec_verify.work_precision import add_work_precision_parser, command_work_precision_baseline
 
 BASELINE_SCHEMA = "vdec.nightly-baseline/1"
 DEFAULT_BASELINE_DIR = "reports/baseline"
@@ -91,6 +95,8 @@ def describe(acceptance):
 
 
 def command_baseline(args):
+    if args.action == "work-precision":
+        return command_work_precision_baseline(args)
     try:
         if args.action == "accept":
             by = args.by or os.environ.get("VDEC_BASELINE_BY") or getpass.getuser()
@@ -117,7 +123,8 @@ def command_baseline(args):
 
 
 def add_baseline_parser(commands):
-    parser = commands.add_parser("baseline", help="accept or show the nightly baseline")
+    parser = commands.add_parser("baseline", help="accept or show the nightly baseline; take the committed "
+                                                  "work-precision baseline")
     actions = parser.add_subparsers(dest="action", required=True)
     accept_parser = actions.add_parser("accept", help="make a summary.json the baseline, with who and why")
     accept_parser.add_argument("summary", nargs="?", default=DEFAULT_SUMMARY,
@@ -128,4 +135,5 @@ def add_baseline_parser(commands):
     show_parser.add_argument("--json", action="store_true")
     for sub in (accept_parser, show_parser):
         sub.add_argument("--baseline", default=DEFAULT_BASELINE_DIR, help=f"folder (default {DEFAULT_BASELINE_DIR})")
+    add_work_precision_parser(actions)
     return parser

@@ -9,7 +9,8 @@ histories and the field checks sample).
 Every figure shows the error as well as the values: a series check gets the two curves and,
 below them on the same abscissa, vdec minus the closed form; the scalar checks of a problem get
 one panel of error over tolerance (1 is the limit of the pass rule); a convergence study gets
-error against zone size and error against wall time (work-precision).
+error against zone size and error against wall time (work-precision). The work-precision panels
+also draw the committed baseline's curve (grey, dashed; vdec_verify.work_precision).
 """
 import io
 import json
@@ -177,45 +178,75 @@ def _draw_order(ax, study):
         ax.legend(fontsize=6, loc="best")
 
 
-def _draw_work(ax, study):
-    """Work-precision: error against the wall seconds of each level's run."""
+BASELINE_STYLE = dict(color="grey", ls="--", lw=1.0, alpha=0.9)
+
+
+def _baseline_label(compared, what=""):
+    return f"{what}baseline {str(compared.get('commit'))[:12]}"
+
+
+def _draw_baseline_points(ax, points, name_key, marker, label):
+    """A baseline curve (grey, dashed) of the points with a positive error and time; their x values."""
+    kept = sorted((p["wall_seconds"], p["error"], p[name_key]) for p in points
+                  if p.get("error") is not None and p["error"] > 0 and math.isfinite(p["error"]) and p["wall_seconds"] > 0)
+    if not kept:
+        return [], []
+    seconds, errors, names = zip(*kept)
+    ax.loglog(seconds, errors, marker=marker, mfc="none", label=label, **BASELINE_STYLE)
+    for x, e, name in kept:
+        ax.annotate(name, (x, e), textcoords="offset points", xytext=(4, -9), fontsize=5.5, color="grey")
+    return list(seconds), list(errors)
+
+
+def draw_work_precision(ax, study, compared=None):
+    """Work-precision: error against the wall seconds of each level's run, with the baseline's curve
+    (compared: the problem's work_precision_baseline record) when it has one."""
     colour = "tab:green" if study["pass"] else "tab:red"
-    title = "\n".join(textwrap.wrap(f"work-precision of {study.get('quantity', '')}", 52)[:2]
-                      + ["error against wall time per level"])
+    base = (compared or {}).get("study")
+    against = "error against wall time per level" if compared is None else \
+        f"grey dashed: the baseline of {str(compared['commit'])[:12]}" if base else "no baseline entry"
+    title = "\n".join(textwrap.wrap(f"work-precision of {study.get('quantity', '')}", 52)[:2] + [against])
     seconds, errors, names = _study_points(study, "wall_seconds")
     if _study_axes(ax, study, seconds, errors, names, colour, "wall seconds of the run", title):
-        _data_ticks(ax.xaxis, [min(seconds), max(seconds)])
-        _data_ticks(ax.yaxis, errors)
+        base_seconds, base_errors = _draw_baseline_points(ax, base["levels"], "name", "s", _baseline_label(compared)) \
+            if base else ([], [])
+        _data_ticks(ax.xaxis, [min(seconds + base_seconds), max(seconds + base_seconds)])
+        _data_ticks(ax.yaxis, errors + base_errors)
         ax.legend(fontsize=6, loc="best")
 
 
-def study_figure(study):
-    """Error against zone size (with the expected slope) and against wall time."""
+def study_figure(study, compared=None):
+    """Error against zone size (with the expected slope) and against wall time (with the baseline's curve)."""
     fig = Figure(figsize=(6.8, 2.9))
     grid = fig.add_gridspec(1, 2, left=0.09, right=0.98, top=0.80, bottom=0.16, wspace=0.3)
     _draw_order(fig.add_subplot(grid[0]), study)
-    _draw_work(fig.add_subplot(grid[1]), study)
+    draw_work_precision(fig.add_subplot(grid[1]), study, compared)
     return png_bytes(fig)
 
 
-def work_precision_figure(figure):
-    """Error against wall seconds, one marked line per series (method), each point labelled with its run."""
-    fig = Figure(figsize=(5.0, 3.2))
-    ax = fig.add_axes([0.13, 0.15, 0.84, 0.72])
+def draw_methods(ax, figure, compared=None):
+    """Error against wall seconds, one marked line per series (method), each point labelled with its run;
+    with each series' baseline curve in grey (compared: this figure's entry of the baseline comparison)."""
     ax.set_title("\n".join(textwrap.wrap(figure["title"], 70)[:2]), fontsize=7)
     ax.set_xlabel("wall seconds of the run", fontsize=7)
     ax.set_ylabel(f"error ({figure.get('norm', '')})", fontsize=7)
     ax.tick_params(labelsize=6)
+    baseline_of = {s["label"]: s for s in (compared or {}).get("series", [])}
     drawn, all_errors = False, []
     for number, series in enumerate(figure["series"]):
+        marker = "os^vD"[number % 5]
         points = sorted((p["wall_seconds"], p["error"], p["run"]) for p in series["points"]
                         if p["error"] is not None and p["wall_seconds"] and math.isfinite(p["error"]) and p["error"] > 0)
+        base = baseline_of.get(series["label"])
+        if base and base["points"]:
+            all_errors += _draw_baseline_points(ax, base["points"], "run", marker,
+                                                _baseline_label(compared, f"{series['label']}, "))[1]
         if not points:
             continue
         drawn = True
         seconds, errors, runs = zip(*points)
         all_errors += errors
-        ax.loglog(seconds, errors, marker="os^vD"[number % 5], lw=0.8, label=series["label"])
+        ax.loglog(seconds, errors, marker=marker, lw=0.8, label=series["label"])
         for x, e, run in points:
             ax.annotate(run, (x, e), textcoords="offset points", xytext=(4, 4), fontsize=6)
     if not drawn:
@@ -224,6 +255,12 @@ def work_precision_figure(figure):
     else:
         _data_ticks(ax.yaxis, all_errors)
         ax.legend(fontsize=6, loc="best")
+
+
+def work_precision_figure(figure, compared=None):
+    """A [[work_precision]] figure (draw_methods) as PNG bytes."""
+    fig = Figure(figsize=(5.0, 3.2))
+    draw_methods(fig.add_axes([0.13, 0.15, 0.84, 0.72]), figure, compared)
     return png_bytes(fig)
 
 
@@ -380,15 +417,24 @@ def problem_figures(record, setup=None, problem=None):
                         f"{pid}: error of each scalar check (numbered as in the check table) over its tolerance, on "
                         "a log scale; the dashed line at 1 is the pass rule's limit, a bar past it fails. An upper "
                         "bound met with room to spare (vdec below the bound) is hatched."})
+    compared = record.get("work_precision_baseline")
+    against = f" Against the baseline: {compared['message']}." if compared else ""
     for k, figure in enumerate(record.get("work_precision") or [], start=1):
-        figures.append({"name": f"{pid}-work-precision{k}.png", "png": work_precision_figure(figure), "wide": False,
+        figure_compared = None
+        if compared and compared.get("commit"):
+            figure_compared = dict(compared["figures"][k - 1], commit=compared["commit"])
+        figures.append({"name": f"{pid}-work-precision{k}.png", "png": work_precision_figure(figure, figure_compared),
+                        "wide": False,
                         "caption": f"{pid}: work-precision, {figure['title']}: the error of each check against the "
                                    "wall seconds of the run it reads (set-up included), one line per method; the "
-                                   "lower and further left, the better."})
+                                   "lower and further left, the better; grey dashed, each method in the committed "
+                                   f"baseline.{against}"})
     study = record.get("convergence")
     if study is not None:
-        figures.append({"name": f"{pid}-convergence.png", "png": study_figure(study), "wide": True, "caption":
-                        f"{pid}: convergence of {study.get('quantity', '')}. Left: error against zone size h on "
-                        "log-log axes, with the expected slope through the finest level and the least-squares fit. "
-                        "Right: work-precision, error against the wall seconds of each level's run."})
+        figures.append({"name": f"{pid}-convergence.png", "png": study_figure(study, compared), "wide": True,
+                        "caption": f"{pid}: convergence of {study.get('quantity', '')}. Left: error against zone "
+                                   "size h on log-log axes, with the expected slope through the finest level and the "
+                                   "least-squares fit. Right: work-precision, error against the wall seconds of each "
+                                   "level's run, and in grey dashed the committed baseline's curve."
+                                   f"{against}"})
     return figures

@@ -44,6 +44,7 @@ from reportlab.platypus.tableofcontents import TableOfContents
 
 from vdec_verify import PASS_RULE
 from vdec_verify.figures import ratio_of
+from vdec_verify.work_precision import ratio_text
 
 REPOSITORY = Path(__file__).resolve().parents[3]
 LIMITATIONS_FILE = REPOSITORY / "docs" / "known-limitations.md"
@@ -310,7 +311,8 @@ KNOWN_HARNESS = {"git_commit", "git_dirty", "version", "date", "host", "python",
                  "software_consistent", "software_disagreements"}
 KNOWN_SUMMARY = {"schema", "software", "harness", "counts", "problems"}
 KNOWN_PROBLEM = {"id", "title", "requirements", "level", "status", "metrics", "runs", "wall_seconds", "cycles",
-                 "scene_sha256", "exit_code", "message", "messages", "convergence", "mutations", "work_precision"}
+                 "scene_sha256", "exit_code", "message", "messages", "convergence", "mutations", "work_precision",
+                 "work_precision_baseline"}
 KNOWN_METRIC = {"quantity", "variant", "extract", "norm", "rtol", "atol", "error", "tolerance", "pass", "numerical",
                 "reference", "justification", "message", "plot", "level"}
 
@@ -519,6 +521,9 @@ class _Builder:
         self.mutations(r)
         if r.get("convergence") is not None:
             self.study_table(r["convergence"])
+        if r.get("work_precision_baseline") is not None:
+            self.story.append(markup(f"<b>Against the work-precision baseline:</b> "
+                                     f"{text(r['work_precision_baseline']['message'])}", "small"))
 
     def set_up(self, r, data):
         self.story.append(markup("Set-up", "h3"))
@@ -637,7 +642,7 @@ class _Builder:
     def studies(self):
         self.heading("5 Convergence studies", 0, "studies")
         rows = [["problem", "quantity", "observed order", "expected", "band", "GCI (fine)", "asymptotic ratio",
-                 "result"]]
+                 "result", "error, time ratio to the baseline"]]
         extra = []
         for r in self.records:
             study = r.get("convergence")
@@ -648,7 +653,7 @@ class _Builder:
                          "none" if observed is None else f"{observed:.3f}", f"{study['expected_order']:g}",
                          f"+- {study['order_tolerance']:g}", ratio(study.get("gci")) or "none",
                          "none" if study.get("asymptotic_ratio") is None else f"{study['asymptotic_ratio']:.3f}",
-                         "PASS" if study["pass"] else "FAIL"])
+                         "PASS" if study["pass"] else "FAIL", para(self.baseline_ratios(r), "note")])
             extra.append(("BACKGROUND", (7, len(rows) - 1), (7, len(rows) - 1),
                           STATUS_COLOURS["pass" if study["pass"] else "fail"]))
         if len(rows) == 1:
@@ -659,9 +664,21 @@ class _Builder:
             "|observed - expected| is within the band. GCI: Roache's Grid Convergence Index of the finest level "
             "from the three finest fitted levels (Celik et al. 2008, Fs = 1.25), a fraction of the finest value; "
             "asymptotic ratio GCI_23 / (r21^p GCI_12), about 1 in the asymptotic range. Each study's levels, "
-            "its error-against-h plot and its work-precision plot are in its problem's section."))
-        self.story.append(_table(rows, [38 * mm, None, 17 * mm, 14 * mm, 13 * mm, 18 * mm, 17 * mm, 12 * mm],
+            "its error-against-h plot and its work-precision plot are in its problem's section. The last column: "
+            "this run's error and wall seconds over those of the committed work-precision baseline, at the finest "
+            "level both have (above 1: larger or slower than the baseline)."))
+        self.story.append(_table(rows, [30 * mm, None, 16 * mm, 14 * mm, 12 * mm, 17 * mm, 17 * mm, 12 * mm, 24 * mm],
                                  extra=extra))
+
+    @staticmethod
+    def baseline_ratios(r):
+        """The study's two ratios to the work-precision baseline at the finest common level, or why there are none."""
+        compared = r.get("work_precision_baseline") or {}
+        study = compared.get("study") or {}
+        if study.get("common_level") is None:
+            return "no baseline entry" if compared.get("commit") is None else "no common level"
+        return (f"{ratio_text(study['error_ratio'])}, {ratio_text(study['time_ratio'])} at "
+                f"{study['common_level']} ({compared['commit'][:12]})")
 
     def deviations(self):
         self.story.append(PageBreak())

@@ -4,7 +4,9 @@ report.pdf and the traceability matrix) and report.pdf (typeset by vdec_verify.p
 
 A problem with a convergence study keeps its "convergence" record in summary.json (an optional
 key of the same schema) and gets a figure of two panels: error against zone size h on log-log
-axes with a line of the expected slope, and error against wall seconds (work-precision).
+axes with a line of the expected slope, and error against wall seconds (work-precision) with the
+committed baseline's curve (vdec_verify.work_precision); its comparison with that baseline is the
+problem's "work_precision_baseline" record, as are those of its [[work_precision]] figures.
 """
 import html
 import json
@@ -18,6 +20,7 @@ from vdec_verify import PASS_RULE
 from vdec_verify.figures import problem_figures, setup_models
 from vdec_verify.pdf_report import write_pdf
 from vdec_verify.provenance import harness_info, software_of_runs
+from vdec_verify.work_precision import comparison, load_for_report
 
 SUMMARY_SCHEMA = "vdec.verification/1"
 PROBLEM_FIELDS = ("id", "title", "requirements", "level", "status", "metrics", "runs", "wall_seconds", "cycles",
@@ -53,6 +56,8 @@ def public_record(record):
         kept["work_precision"] = record["work_precision"]
     if record.get("mutations") is not None:     # only when the suite ran the mutations (level full)
         kept["mutations"] = record["mutations"]
+    if record.get("work_precision_baseline") is not None:   # only problems with a curve
+        kept["work_precision_baseline"] = record["work_precision_baseline"]
     return _finite_or_none(kept)
 
 
@@ -191,13 +196,15 @@ def _study_rows(records):
             f"{_ratio(error) or 'none'}, {seconds:.3g} s"
             for name, h, error, seconds in zip(study["levels"], study["h"], study["error"], study["wall_seconds"]))
         result = "PASS" if study["pass"] else "FAIL"
+        compared = r.get("work_precision_baseline") or {}
         rows.append(f'<tr><td><a href="#{e(r["id"])}">{e(r["id"])}</a></td><td>{e(study.get("quantity", ""))}'
                     f'<br><small class="note">{e(study["message"])}</small></td><td class="num">{levels}</td>'
                     f'<td class="num">{_order(study["observed_order"])}</td>'
                     f'<td class="num">{study["expected_order"]:g}</td>'
                     f'<td class="num">+- {study["order_tolerance"]:g}</td><td class="num">{_ratio(study["gci"])}</td>'
                     f'<td class="num">{_order(study["asymptotic_ratio"])}</td>'
-                    f'<td class="{result.lower()}">{result}</td></tr>')
+                    f'<td class="{result.lower()}">{result}</td>'
+                    f'<td><small>{e(compared.get("message", ""))}</small></td></tr>')
     return rows
 
 
@@ -241,13 +248,16 @@ def write_html(records, out, harness, software, disagreements, images):
     studies = _study_rows(records)
     study_table = "" if not studies else f"""<h2>Convergence studies</h2>
 <table><tr><th>problem</th><th>studied quantity</th><th>levels (bold: fitted)</th><th>observed order</th>
-<th>expected order</th><th>band</th><th>GCI (fine)</th><th>asymptotic ratio</th><th>result</th></tr>
+<th>expected order</th><th>band</th><th>GCI (fine)</th><th>asymptotic ratio</th><th>result</th>
+<th>against the work-precision baseline</th></tr>
 {chr(10).join(studies)}
 </table>
 <p class="note">Observed order: least-squares slope of ln(error) against ln(h) over the fitted levels; it passes when
 |observed - expected| is within the band. GCI: Roache's Grid Convergence Index of the finest level from the three finest
 fitted levels (Celik et al. 2008, Fs = 1.25), a fraction of the finest value; asymptotic ratio GCI_23 / (r21^p GCI_12),
-about 1 in the asymptotic range. The plots show error against h (with the expected slope) and against wall time.</p>
+about 1 in the asymptotic range. The plots show error against h (with the expected slope) and against wall time, with
+the committed baseline's curve in grey dashed. Error ratio and time ratio: this run's error and wall seconds over the
+baseline's, at the finest level both have (above 1: larger or slower than the baseline).</p>
 """
     provenance = "<br>".join(e(line) for line in _provenance_lines(software, harness, disagreements))
     rtm = Path(os.path.relpath(RTM_FILE, Path(out).resolve())).as_posix()
@@ -302,16 +312,25 @@ def _problem_of(problems_dir, problem_id):
         return None
 
 
-def write_reports(records, out, level="full", configuration=None, problems_dir=None, revision="1"):
+def write_reports(records, out, level="full", configuration=None, problems_dir=None, revision="1",
+                  work_precision_baseline=None):
     """Writes every report file into out; returns the summary as written. `level` is the suite
     level that was run: the traceability audit expects full-level problems only in a full run.
     `configuration` (provenance.run_configuration) adds the vdec binary, problems folder, filter
     and harness files, and the verdict on whether the run qualifies its commit. problems_dir: the
     folder of problem folders (their problem.toml gives each problem's description and set-up in
-    report.pdf); revision: report.pdf's revision."""
+    report.pdf); revision: report.pdf's revision. work_precision_baseline: the work_precision.Baseline
+    the curves are compared with (None: the committed file, when there is one)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     harness = dict(harness_info(configuration), level=level)
+    baseline = work_precision_baseline if work_precision_baseline is not None else load_for_report()
+    if baseline is not None:
+        harness["work_precision_baseline"] = {"file": baseline.shown, "sha256": baseline.sha256}
+    for r in records:
+        compared = comparison(r, baseline, harness)
+        if compared is not None:
+            r["work_precision_baseline"] = compared
     software, disagreements = software_of_runs(records)
     setups = setup_models(records)
     figures = {r["id"]: problem_figures(r, setups[r["id"]], _problem_of(problems_dir, r["id"])) for r in records}
