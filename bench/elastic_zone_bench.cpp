@@ -17,8 +17,8 @@
 // the largest mesh would be timed with most zones at rest (measured: 37 ns per zone-cycle
 // instead of 42).
 //
-// Each size and thread count (omp_set_num_threads) gets one vdec::Cycle, which first runs
-// warm-up cycles (not timed: the OpenMP team is started, the arrays are paged in and the caches
+// Each size and thread count (ThreadTeam::setThreadCount) gets one vdec::Cycle, which first runs
+// warm-up cycles (not timed: the thread team is started, the arrays are paged in and the caches
 // warm) and then a timed window of a fixed number of cycles per iteration (manual time: only that
 // Cycle::run() call). The zones are all moving throughout, so the cost of a cycle does not
 // depend on how far the run has gone: the iterations continue the same run and each does the
@@ -34,12 +34,12 @@
 //                           bookkeeping, the stage calls and the profiling clock reads
 //   ns_<stage>_per_zone_cycle  that stage's time per zone-cycle
 #include <benchmark/benchmark.h>
-#include <omp.h>
 
 #include <chrono>
 #include <map>
 #include <string>
 
+#include "core/thread_team.hpp"
 #include "run/cycle.hpp"
 #include "core/model.hpp"
 #include "scene/scene_builder.hpp"
@@ -96,23 +96,11 @@ void RunBlock(benchmark::State& state) {
   const long long warmup = std::max<long long>(10, cycles / 10);
   const vdec::Scene& scene = sceneOfSize(n);
 
-  const int previousThreads = omp_get_max_threads();
-  omp_set_num_threads(threads);
+  vdec::ThreadTeam::instance().setThreadCount(threads);
   struct Restore {
-    int t;
-    ~Restore() { omp_set_num_threads(t); }
-  } restore{previousThreads};
-  int teamSize = 0;
-#pragma omp parallel
-  {
-#pragma omp single
-    teamSize = omp_get_num_threads();
-  }
-  if (teamSize != threads) {
-    state.SkipWithError(("asked for " + std::to_string(threads) + " threads, OpenMP gives " +
-                         std::to_string(teamSize)).c_str());
-    return;
-  }
+    ~Restore() { vdec::ThreadTeam::instance().setThreadCount(1); }
+  } restore;
+  const int teamSize = vdec::ThreadTeam::instance().threadCount();
 
   vdec::Model model = scene.model;
   {

@@ -1,7 +1,6 @@
 // vdec: the command-line front end. `vdec run SCENE --out DIR` reads a scene, runs it and
 // writes DIR/results.json; the exit code says what went wrong (core/errors.hpp).
 #include <CLI/CLI.hpp>
-#include <omp.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -18,6 +17,7 @@
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "core/parallel.hpp"
+#include "core/thread_team.hpp"
 #include "io/build_info.hpp"
 #include "io/results_writer.hpp"
 #include "io/scene_reader.hpp"
@@ -55,27 +55,6 @@ std::vector<int> phasesToSave(const RunOptions& options, const vdec::Scene& scen
   return indices;
 }
 
-// Idle OpenMP threads spin before they sleep (libgomp: 300 000 polls, milliseconds), which on a
-// busy machine takes the CPU from the thread doing the work: two threads ran 2 to 14 times
-// slower than one with another job on one of two cores. Sleeping threads never ran slower than
-// one thread above the automatic count's threshold; on an idle machine they cost part of the
-// gain (docs/performance.md#threads). libgomp reads OMP_WAIT_POLICY once, as it is loaded,
-// before main: so the variable is set and vdec executes itself again. A policy the user set
-// (OMP_WAIT_POLICY or GOMP_SPINCOUNT) is kept.
-void waitPassivelyInOpenMp(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
-  setenv("OMP_WAIT_POLICY", "passive", 1);
-  execv("/proc/self/exe", argv);
-  unsetenv("OMP_WAIT_POLICY");  // no /proc: run on with the library's default
-}
-
-std::string openMpWaitPolicy() {
-  std::string policy;
-  for (const char* name : {"OMP_WAIT_POLICY", "GOMP_SPINCOUNT"})
-    if (const char* value = std::getenv(name)) policy += (policy.empty() ? "" : " ") + std::string(name) + "=" + value;
-  return policy.empty() ? "library default" : policy;
-}
-
 int runScene(const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const std::string& outDir = options.outDir;
@@ -95,9 +74,8 @@ int runScene(const RunOptions& options) {
   environment.threads = options.threads > 0 ? options.threads
                         : vdec::automaticThreadCount(static_cast<long long>(scene.model.zones.size()) +
                                                          scene.model.gridpoints.size(),
-                                                     omp_get_max_threads());
-  environment.waitPolicy = openMpWaitPolicy();
-  omp_set_num_threads(environment.threads);
+                                                     vdec::availableThreads());
+  vdec::ThreadTeam::instance().setThreadCount(environment.threads);
   const std::vector<int> saveAfter = phasesToSave(options, scene);
   vdec::Cycle cycle(scene.model, scene.settings, scene.histories);
   if (!options.restart.empty()) {
@@ -180,7 +158,6 @@ int runScene(const RunOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  waitPassivelyInOpenMp(argv);
   CLI::App app{"vdec: Verified Distinct Element Code, a 2D distinct element code for jointed rock"};
   app.set_version_flag("--version", std::string("vdec ") + vdec::build::version + " (" + vdec::build::gitCommit +
                                         ", " + vdec::build::buildType + ", " + vdec::build::compiler + ")");
@@ -196,7 +173,7 @@ int main(int argc, char** argv) {
   run->add_option("--set", options.overrides, "override a scene key, e.g. --set solver.frac=0.2 (repeatable)");
   run->add_flag("--profile", options.profile, "print the time spent in each stage of the cycle");
   run->add_option("--threads", options.threads,
-                  "OpenMP threads for the zone and gridpoint loops; 0 (the default): one for a small model, "
+                  "threads for the zone and gridpoint loops; 0 (the default): one for a small model, "
                   "else OMP_NUM_THREADS or every processor")
       ->check(CLI::Range(0, 1024));
   run->add_option("--save", options.save,

@@ -4,25 +4,41 @@
 // fixed-size chunk and then combined in chunk order, so the additions happen in the same order at
 // 1 or N threads.
 #include <cstddef>
+#include <cstdlib>
+#include <thread>
+#include <type_traits>
 #include <vector>
+
+#include "core/thread_team.hpp"
 
 namespace vdec {
 
-inline constexpr int kReduceChunk = 1024;
+inline constexpr int kReduceChunk = 256;
 
 // The work of a step that the threads share: the zone-forces and gridpoint-motion loops, over
 // zones and gridpoints. Contacts are computed on one thread and do not count.
-// Below kWorkForThreads elements per step a second thread does not pay: with idle threads
-// sleeping (OMP_WAIT_POLICY=passive, as vdec sets it) every loop wakes the other thread, which
-// takes tens of microseconds, and waits for it at the loop's end. Measured on an idle 2-core
-// machine: two threads 1.00 times as fast as one at 21 721 elements, 1.21 times at 30 389
-// (docs/performance.md#threads).
-inline constexpr long long kWorkForThreads = 30000;
+// Below kWorkForThreads elements per step a second thread does not pay: a loop's chunks are then
+// few, and with another job on the machine two threads lost 5 % there. Measured on a 2-core
+// machine: two threads 1.6 times as fast as one at 3 800 elements (2 500 zones) when idle, 0.95
+// with one core busy; 1.7 and 0.99 at 15 000 (docs/performance.md#threads).
+inline constexpr long long kWorkForThreads = 8000;
 
 // The thread count for a run that does not set one: one below kWorkForThreads, else all
-// `available` (the OpenMP maximum: OMP_NUM_THREADS, or the number of processors).
+// `available` (availableThreads()).
 inline int automaticThreadCount(long long workPerStep, int available) {
   return workPerStep < kWorkForThreads || available < 1 ? 1 : available;
+}
+
+// OMP_NUM_THREADS when it is a positive count (the variable users of threaded codes set), else
+// the number of processors.
+inline int availableThreads() {
+  if (const char* value = std::getenv("OMP_NUM_THREADS")) {
+    char* end = nullptr;
+    const long count = std::strtol(value, &end, 10);
+    if (end != value && *end == '\0' && count > 0 && count <= 1024) return static_cast<int>(count);
+  }
+  const unsigned processors = std::thread::hardware_concurrency();
+  return processors > 0 ? static_cast<int>(processors) : 1;
 }
 
 // Calls f(i, acc) for i in [0, n), each chunk with its own accumulator starting from T{}, and
@@ -38,14 +54,18 @@ T deterministicReduceChunks(int n, F&& f, Combine&& combine) {
   static thread_local std::vector<T> buffer;
   std::vector<T>& partial = buffer;
   partial.assign(static_cast<std::size_t>(chunks), T{});
-  // One chunk is not worth waking the other threads for.
-#pragma omp parallel for schedule(static) if (chunks > 1)
-  for (int c = 0; c < chunks; ++c) {
-    const int end = (c + 1) * kReduceChunk < n ? (c + 1) * kReduceChunk : n;
+  struct Loop {
+    std::remove_reference_t<F>* f;
+    std::vector<T>* partial;
+    int n;
+  } loop{&f, &partial, n};
+  ThreadTeam::instance().run(chunks, [](void* context, int c) {
+    const Loop& l = *static_cast<const Loop*>(context);
+    const int end = (c + 1) * kReduceChunk < l.n ? (c + 1) * kReduceChunk : l.n;
     T acc{};
-    f(c * kReduceChunk, end, acc);
-    partial[static_cast<std::size_t>(c)] = acc;
-  }
+    (*l.f)(c * kReduceChunk, end, acc);
+    (*l.partial)[static_cast<std::size_t>(c)] = acc;
+  }, &loop);
   T total{};
   for (const T& p : partial) combine(total, p);
   return total;

@@ -44,8 +44,7 @@ nlohmann::json environment(const RunEnvironment& run) {
   gmtime_r(&now, &utc);
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return {{"host", host}, {"written_utc", stamp}, {"threads", run.threads}, {"threads_option", run.threadsOption},
-          {"openmp_wait_policy", run.waitPolicy}};
+  return {{"host", host}, {"written_utc", stamp}, {"threads", run.threads}, {"threads_option", run.threadsOption}};
 }
 
 // Deformable blocks: per gridpoint its initial position and displacement, per zone its centroid

@@ -16,9 +16,8 @@ void prepareOutputDirectory(const std::string& dir);
 // How the run was carried out: provenance for the environment object (it differs between runs
 // of one scene; the results do not).
 struct RunEnvironment {
-  int threads = 1;        // OpenMP threads the run used
+  int threads = 1;        // threads the run's loops used (core/thread_team.hpp)
   int threadsOption = 0;  // --threads as given; 0: chosen from the work
-  std::string waitPolicy; // how idle OpenMP threads wait (parallel.hpp)
   std::string restartFile;  // the state file the run continued from (--restart), else empty
   int restartPhases = 0;    // the phases done in it
 };

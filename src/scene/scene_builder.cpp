@@ -179,7 +179,7 @@ Mesh zoneBlock(const BlockDefinition& d, std::size_t zonesBefore, SetupProgress&
   if (z.kind == ZoningDefinition::Kind::Annulus) {
     checkZoneCount(d.origin, "annulus", 4.0 * z.annulus.radial * z.annulus.circumferential, "4 radial circumferential",
                    zonesBefore, progress);
-    return crossedAnnulusMesh(z.annulus);
+    return inZoneOrder(crossedAnnulusMesh(z.annulus));
   }
   const Polygon& p = d.vertices;
   if (z.kind == ZoningDefinition::Kind::Unstructured) {
@@ -190,14 +190,14 @@ Mesh zoneBlock(const BlockDefinition& d, std::size_t zonesBefore, SetupProgress&
     if (perimeter / z.maxEdge > 1e5) z.origin.fail("max_edge", "is too small for this block: over 1e5 edges on its outline");
     checkZoneCount(z.origin, "max_edge", kDelaunayZonesPerArea * signedArea(p) / (z.maxEdge * z.maxEdge),
                    "about 6 area / max_edge^2", zonesBefore, progress);
-    return delaunayMesh(p, z.maxEdge);
+    return inZoneOrder(delaunayMesh(p, z.maxEdge));
   }
   if (p.size() != 4)
     d.origin.fail("zoning", "structured zoning needs a quadrilateral block (4 vertices), got " + std::to_string(p.size()));
   // Convex and counter-clockwise, like every block (edge lengths do not matter without contacts).
   validateBlockPolygon(p, 0.0, d.origin.location());
   checkZoneCount(d.origin, "zoning", 4.0 * z.nx * z.ny, "4 nx ny", zonesBefore, progress);
-  return crossedQuadMesh({p[0], p[1], p[2], p[3]}, z.nx, z.ny);
+  return inZoneOrder(crossedQuadMesh({p[0], p[1], p[2], p[3]}, z.nx, z.ny));
 }
 
 void addMaterials(Model& m, const SceneDefinition& s) {

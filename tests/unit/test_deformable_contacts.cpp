@@ -1,10 +1,10 @@
 // Contacts on deformable blocks: outline gridpoints as corners, forces shared along edges,
 // contact lengths that partition a joint between both sides, rigid-deformable contacts.
-#include <omp.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "core/thread_team.hpp"
 #include "contact/contact_geometry.hpp"
 #include "run/cycle.hpp"
 #include "core/errors.hpp"
@@ -203,7 +203,7 @@ TEST(DeformableContacts, RigidBlockRestsOnADeformableBase) {
 TEST(DeformableContacts, ResultsAreBitwiseTheSameOnOneAndTwoThreads) {
   VDEC_REQUIREMENTS("REQ-ZONE-004, REQ-ZONE-014");
   auto runWith = [](int threads) {
-    omp_set_num_threads(threads);
+    ThreadTeam::instance().setThreadCount(threads);
     Scene s = sceneFromText(stackScene(24, 32), "stack-threads");
     s.settings.stop = {};
     s.settings.stop.cycles = 400;
@@ -213,7 +213,7 @@ TEST(DeformableContacts, ResultsAreBitwiseTheSameOnOneAndTwoThreads) {
     return s.model;
   };
   const Model one = runWith(1), two = runWith(2);
-  omp_set_num_threads(omp_get_num_procs());
+  ThreadTeam::instance().setThreadCount(1);
   ASSERT_EQ(one.contacts.size(), two.contacts.size());
   for (int i = 0; i < one.gridpoints.size(); ++i) {
     EXPECT_EQ(one.gridpoints.position[i].x, two.gridpoints.position[i].x);

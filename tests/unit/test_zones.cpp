@@ -1,11 +1,11 @@
 // Deformable blocks: zoning, the constant-strain triangle, objectivity, determinism over threads.
-#include <omp.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 
+#include "core/thread_team.hpp"
 #include "run/cycle.hpp"
 #include "core/errors.hpp"
 #include "geometry/zoning.hpp"
@@ -200,7 +200,7 @@ TEST(Zones, RigidRotationRotatesTheStressExactly) {
 TEST(Zones, ResultsAreBitwiseTheSameOnOneAndTwoThreads) {
   VDEC_REQUIREMENTS("REQ-ZONE-004");
   auto runWith = [](int threads) {
-    omp_set_num_threads(threads);
+    ThreadTeam::instance().setThreadCount(threads);
     // Enough zones for several reduction chunks: 32 x 40 cells, 5120 zones.
     SceneDefinition definition = quadDefinition(32, 40);
     definition.settings.massDamping = 50.0;
@@ -224,7 +224,7 @@ TEST(Zones, ResultsAreBitwiseTheSameOnOneAndTwoThreads) {
   };
   const auto [one, reportOne] = runWith(1);
   const auto [two, reportTwo] = runWith(2);
-  omp_set_num_threads(omp_get_num_procs());
+  ThreadTeam::instance().setThreadCount(1);
   ASSERT_EQ(one.gridpoints.size(), two.gridpoints.size());
   for (int i = 0; i < one.gridpoints.size(); ++i) {
     EXPECT_EQ(one.gridpoints.position[i].x, two.gridpoints.position[i].x);
