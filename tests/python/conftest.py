@@ -22,11 +22,14 @@ def pytest_configure(config):
         "markers", "requirements(*ids): requirement ids (REQ-AREA-NNN) this test shows")
 
 
-@pytest.fixture(autouse=True)
-def _record_requirements(request, record_property):
-    marker = request.node.get_closest_marker("requirements")
-    if marker is not None:
-        record_property("requirements", ",".join(marker.args))
+def pytest_collection_modifyitems(items):
+    # Set at collection rather than by a fixture, so that a test skipped before its fixtures run
+    # (one that needs a Slurm cluster) still names its requirements and reads as skipped, not as
+    # a test of no requirement.
+    for item in items:
+        marker = item.get_closest_marker("requirements")
+        if marker is not None:
+            item.user_properties.append(("requirements", ",".join(marker.args)))
 
 
 # pytest.approx without `abs` also accepts any difference below 1e-12: for expected values below

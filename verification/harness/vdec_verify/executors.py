@@ -110,10 +110,11 @@ class SlurmOptions:
 
 
 def _python_path():
-    """PYTHONPATH for the tasks: where this process found vdec_verify and the task's package,
-    then the caller's own PYTHONPATH."""
-    here = [str(Path(p).resolve()) for p in sys.path if p and Path(p).is_dir() and
-            ((Path(p) / "vdec_verify").is_dir() or (Path(p) / "vdec_sweep").is_dir())]
+    """PYTHONPATH for the tasks: this process's own import path (its folders), so that a task
+    imports what the submitting process would: vdec_verify, the task's package and what they
+    import (the closed forms of verification/analytic, found through a folder a test or a
+    script put on sys.path rather than on PYTHONPATH), then the caller's own PYTHONPATH."""
+    here = [str(Path(p).resolve()) for p in sys.path if p and Path(p).is_dir()]
     inherited = [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
     return os.pathsep.join(dict.fromkeys(here + inherited))
 
