@@ -140,17 +140,15 @@ struct PlasticZones {
 
   // The forces the returns take off the elastic trial, sum over yielding zones of A B^T (trial -
   // returned): the residual is f - K u + relief(u).
-  Eigen::VectorXd relief(const Eigen::VectorXd& u, int& yielding) const {
+  Eigen::VectorXd relief(const Eigen::VectorXd& u) const {
     const Zones& zn = model->zones;
     Eigen::VectorXd r = Eigen::VectorXd::Zero(u.size());
-    yielding = 0;
     for (int z = 0; z < zn.size(); ++z) {
       const BlockMaterial& mat = model->blockMaterials[zn.material[z]];
       if (!mat.plastic) continue;
       const ZoneStress trial = trialAt(z, u);
       const ZoneStress back = returned(mat, trial);
       if (back.state == Elastic) continue;
-      ++yielding;
       const double dxx = trial.sxx - back.sxx, dyy = trial.syy - back.syy, dxy = trial.sxy - back.sxy;
       const ShapeGradients& s = shape[z];
       for (int c = 0; c < 3; ++c) {
@@ -204,10 +202,8 @@ Eigen::VectorXd plasticIteration(const PlasticZones& zones, const StiffnessFacto
   double lastSize = INFINITY, bestSize = INFINITY;
   int bestIteration = 0;
   for (int iteration = 0, k = 0; iteration < kMaxPlasticIterations; ++iteration, ++k) {
-    int yielding = 0;
-    const Eigen::VectorXd residual = f - K * u + zones.relief(u, yielding);
+    const Eigen::VectorXd residual = f - K * u + zones.relief(u);
     report.plasticIterations++;
-    report.yieldingZones = yielding;
     const double size = residual.norm();
     report.plasticResidual = size;
     if (!(size > target)) return u;

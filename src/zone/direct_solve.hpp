@@ -14,8 +14,7 @@ struct DirectSolveReport {
   int solves = 0;  // on successive configurations, until the residual is at round-off
   int factorisations = 0;  // of the stiffness: once, and again when the joints carrying springs change
   int plasticIterations = 0;  // of the plastic zones' equilibrium, over all solves (0 without plastic zones)
-  int yieldingZones = 0;      // zones on the yield surface at the last iteration
-  bool plasticConverged = true;  // false when the iteration stopped at its limit without equilibrium
+  bool plasticConverged = true;  // false when the iteration gave up without an equilibrium (stagnant or at its limit)
   double plasticResidual = 0.0;  // its last residual, N/m
   double relativeResidual = 0.0;  // of the last solve's right-hand side, over the force scale
   double seconds = 0.0;
