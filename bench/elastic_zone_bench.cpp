@@ -33,6 +33,9 @@
 //                           (RunSettings::profile); share_other is the rest: the step's
 //                           bookkeeping, the stage calls and the profiling clock reads
 //   ns_<stage>_per_zone_cycle  that stage's time per zone-cycle
+//   vector_unit             the version of the zone and gridpoint loops that ran (VectorUnit:
+//                           0 baseline, 1 AVX2, 2 AVX-512); ElasticZones runs the widest
+//                           supported, ZoneVectorUnits each in turn
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -40,6 +43,7 @@
 #include <string>
 
 #include "core/thread_team.hpp"
+#include "core/vector_unit.hpp"
 #include "run/cycle.hpp"
 #include "core/model.hpp"
 #include "scene/scene_builder.hpp"
@@ -89,16 +93,23 @@ const vdec::Scene& sceneOfSize(int n) {
   return scenes.emplace(n, buildBlock(n)).first->second;
 }
 
-void RunBlock(benchmark::State& state) {
+void RunBlock(benchmark::State& state, vdec::VectorUnit unit) {
   const int n = static_cast<int>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   const long long cycles = state.range(2);
+  if (!vdec::setVectorUnit(unit)) {
+    state.SkipWithError((std::string("this processor has no ") + vdec::vectorUnitName(unit)).c_str());
+    return;
+  }
   const long long warmup = std::max<long long>(10, cycles / 10);
   const vdec::Scene& scene = sceneOfSize(n);
 
   vdec::ThreadTeam::instance().setThreadCount(threads);
   struct Restore {
-    ~Restore() { vdec::ThreadTeam::instance().setThreadCount(1); }
+    ~Restore() {
+      vdec::ThreadTeam::instance().setThreadCount(1);
+      vdec::setVectorUnit(vdec::widestVectorUnit());
+    }
   } restore;
   const int teamSize = vdec::ThreadTeam::instance().threadCount();
 
@@ -175,13 +186,14 @@ void RunBlock(benchmark::State& state) {
   state.counters["share_other"] = (seconds - profiled) / seconds;
   state.counters["ns_other_per_zone_cycle"] = 1e9 * (seconds - profiled) / (zones * totalCycles);
   state.counters["dt"] = previous.dt;
+  state.counters["vector_unit"] = static_cast<double>(unit);
   state.SetLabel(std::to_string(n) + "x" + std::to_string(n) + " crossed, " + std::to_string(teamSize) +
                  (teamSize == 1 ? " thread" : " threads"));
 }
 
 void ElasticZones(benchmark::State& state) {
   try {
-    RunBlock(state);
+    RunBlock(state, vdec::widestVectorUnit());
   } catch (const std::exception& e) {  // scene or geometry errors: report, go on with the next size
     state.SkipWithError(e.what());
   }
@@ -212,6 +224,26 @@ BENCHMARK(ElasticZones)
     ->Args({500, 1, 40})
     ->Args({500, 2, 40})
     ->ArgNames({"n", "threads", "cycles"})
+    ->Iterations(kIterations)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+// The 99 856-zone block on one thread with each vector unit's version of the zone and gridpoint
+// loops (core/vector_unit.hpp): 0 the SSE2 baseline, 1 AVX2, 2 AVX-512. A unit this processor
+// lacks is skipped with an error naming it.
+void ZoneVectorUnits(benchmark::State& state) {
+  try {
+    RunBlock(state, static_cast<vdec::VectorUnit>(state.range(3)));
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+  }
+}
+
+BENCHMARK(ZoneVectorUnits)
+    ->Args({158, 1, 400, 0})
+    ->Args({158, 1, 400, 1})
+    ->Args({158, 1, 400, 2})
+    ->ArgNames({"n", "threads", "cycles", "unit"})
     ->Iterations(kIterations)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);

@@ -99,7 +99,7 @@ void keepStaticReactions(const Model& m, FreeFieldColumn& c) {
     // The zones' and joints' forces of the step just taken hold the static state.
     Vec2 held = g.gravityMass[i] * m.gravity + load[i];
     for (int k = m.gridpointZones.start[i]; k < m.gridpointZones.start[i + 1]; ++k)
-      held += m.zones.nodalForce[m.gridpointZones.slot[k] / 3][m.gridpointZones.slot[k] % 3];
+      held += m.zones.nodalForce[k];
     if (!g.contactForce.empty()) held += g.contactForce[i];
     // A component still driven keeps its support, which carries it.
     const Vec2 reaction{(g.driven[i] & DriveX) ? 0.0 : -held.x, (g.driven[i] & DriveY) ? 0.0 : -held.y};

@@ -145,17 +145,20 @@ struct Zones {
   std::vector<int> material;
   std::vector<double> sxx, syy, sxy, szz;
   std::vector<std::uint8_t> plasticState;  // PlasticState bits
-  // The forces the zone puts on its three gridpoints this step, gathered per gridpoint in a
-  // fixed order so that the result does not depend on how the zone loop is split over threads.
-  std::vector<std::array<Vec2, 3>> nodalForce;
+  // The forces the zones put on their gridpoints this step, one per zone corner, stored in
+  // gridpoint order: gridpoint i's are at [GridpointZones::start[i], start[i + 1]), in zone order,
+  // and zone z's corner c is at GridpointZones::place[3 z + c]. The zone loop writes each where
+  // its gridpoint reads it, so the gridpoint loop reads them in one stream and sums them in a
+  // fixed order, whatever the split of the zone loop over threads.
+  std::vector<Vec2> nodalForce;
 
   int size() const { return static_cast<int>(gridpoint.size()); }
 };
 
-// For each gridpoint, the (zone, corner) slots that hold its share of zone forces.
+// Where each gridpoint's share of the zone forces is kept (Zones::nodalForce).
 struct GridpointZones {
-  std::vector<int> start;  // size gridpoints + 1
-  std::vector<int> slot;   // 3 * zone + corner
+  std::vector<int> start;  // size gridpoints + 1: gridpoint i's corners are [start[i], start[i + 1])
+  std::vector<int> place;  // size 3 zones: the index of zone z's corner c is place[3 z + c]
 };
 
 // A boundary edge of a deformable block carrying a traction: the stress tensor given at the

@@ -132,7 +132,7 @@ void visitState(A& a, StrainModes& s) {
 template <class A>
 void visitState(A& a, Model& m) {
   a(m.blockMaterials), a(m.jointMaterials), a(m.blocks), a(m.vertices), a(m.gridpoints), a(m.zones);
-  a(m.gridpointZones.start), a(m.gridpointZones.slot), a(m.loadedEdges), a(m.drivenVelocities);
+  a(m.gridpointZones.start), a(m.gridpointZones.place), a(m.loadedEdges), a(m.drivenVelocities);
   a(m.boundaryConditions), a(m.viscousEdges), a(m.rigidViscousEdges), a(m.freeFields), a(m.initialWaves);
   a(m.timeFunctions), a(m.flow), a(m.structures), a(m.boundaryElements), a(m.heat), a(m.strainModes), a(m.boundaryEdges), a(m.contacts), a(m.yieldingStates), a(m.jointAssignments);
   a(m.defaultJoint), a(m.gravity), a(m.roundingLength), a(m.contactTolerance), a(m.time), a(m.cycle);

@@ -15,6 +15,7 @@
 #include "contact/contact_geometry.hpp"
 #include "flow/fracture_flow.hpp"
 #include "geometry/zoning.hpp"
+#include "core/vector_unit.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "io/atomic_file.hpp"
@@ -44,7 +45,8 @@ nlohmann::json environment(const RunEnvironment& run) {
   gmtime_r(&now, &utc);
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return {{"host", host}, {"written_utc", stamp}, {"threads", run.threads}, {"threads_option", run.threadsOption}};
+  return {{"host", host}, {"written_utc", stamp}, {"threads", run.threads}, {"threads_option", run.threadsOption},
+          {"vector_unit", vectorUnitName(vectorUnit())}};
 }
 
 // Deformable blocks: per gridpoint its initial position and displacement, per zone its centroid

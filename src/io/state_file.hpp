@@ -10,7 +10,7 @@
 namespace vdec {
 
 // The file format's version: raised whenever the layout of what is saved changes.
-inline constexpr unsigned kStateFormatVersion = 2;
+inline constexpr unsigned kStateFormatVersion = 3;
 
 // Writes the state after `phasesDone` phases of `scene` to `path` atomically. Throws OutputError.
 void writeState(const std::string& path, const Scene& scene, Model& model, Cycle& cycle, int phasesDone);

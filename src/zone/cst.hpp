@@ -14,7 +14,7 @@ struct ZoneStepTotals {
 };
 
 // One step: updates every zone's stress from the velocities of the half step just ended and
-// stores the zone's nodal forces (Zones::nodalForce) for the gridpoints to gather. With
+// stores the zone's nodal forces (Zones::nodalForce) where its gridpoints read them. With
 // stiffnessDamping = beta > 0 (1.3-22), a zone that stays elastic in the step also carries the
 // viscous stress beta D de / dt of its elastic stress increment in its nodal forces (not in its
 // stress). Throws InstabilityError naming the zone if a zone turns inside out.

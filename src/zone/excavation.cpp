@@ -47,7 +47,7 @@ ZoneExcavation excavateZones(Model& m, const std::function<bool(Vec2)>& inside, 
     ++done.removed;
   }
   if (done.removed == 0) return done;
-  kept.nodalForce.assign(kept.size(), {});
+  kept.nodalForce.assign(3 * static_cast<std::size_t>(kept.size()), {});
   zn = std::move(kept);
   std::vector<char> used(g.size(), 0);
   for (const auto& n : zn.gridpoint)

@@ -24,7 +24,7 @@ std::string modelBytes(const Model& model) {
   Model& m = const_cast<Model&>(model);
   StateSaver saver;
   saver(m.blockMaterials), saver(m.jointMaterials), saver(m.blocks), saver(m.vertices), saver(m.gridpoints);
-  saver(m.zones), saver(m.gridpointZones.start), saver(m.gridpointZones.slot), saver(m.timeFunctions);
+  saver(m.zones), saver(m.gridpointZones.start), saver(m.gridpointZones.place), saver(m.timeFunctions);
   saver(m.boundaryEdges), saver(m.gravity), saver(m.roundingLength), saver(m.contactTolerance);
   for (const BoundaryCondition& b : m.boundaryConditions) saver(b.name), saver(b.gridpoints), saver(b.fix);
   for (const LoadedEdge& e : m.loadedEdges) saver(e.from), saver(e.to), saver(e.sxx), saver(e.syy), saver(e.sxy), saver(e.history);

@@ -153,10 +153,7 @@ TEST(Zones, PatchTestIsExactToRoundOff) {
   for (int i = 0; i < m.gridpoints.size(); ++i) {
     if (boundary[i]) continue;
     Vec2 f;
-    for (int k = m.gridpointZones.start[i]; k < m.gridpointZones.start[i + 1]; ++k) {
-      const int slot = m.gridpointZones.slot[k];
-      f += m.zones.nodalForce[slot / 3][slot % 3];
-    }
+    for (int k = m.gridpointZones.start[i]; k < m.gridpointZones.start[i + 1]; ++k) f += m.zones.nodalForce[k];
     EXPECT_LT(norm(f), 1e-12 * scale) << "gridpoint " << i;
     ++interior;
   }
