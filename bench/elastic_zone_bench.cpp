@@ -46,43 +46,12 @@
 #include "core/vector_unit.hpp"
 #include "run/cycle.hpp"
 #include "core/model.hpp"
-#include "scene/scene_builder.hpp"
+#include "elastic_block.hpp"
 
 namespace {
 
 constexpr int kIterations = 3;
-constexpr double kSide = 10.0;  // m
 constexpr double kSpin = 0.01;  // rad/s, initial rigid rotation of the free gridpoint components
-
-vdec::Scene buildBlock(int n) {
-  vdec::SceneDefinition s;
-  s.title = "benchmark elastic block " + std::to_string(n) + " x " + std::to_string(n) + " crossed cells";
-  s.model.rounding = 0.01;
-  s.settings.massDamping = 400.0;
-  s.settings.stop.cycles = 1;
-  const double young = 10e9, poisson = 0.25;
-  vdec::BlockMaterial& rock = s.blockMaterials.emplace_back().material;
-  rock.name = "rock";
-  rock.density = 2500.0;
-  rock.bulk = young / (3.0 * (1.0 - 2.0 * poisson));
-  rock.shear = young / (2.0 * (1.0 + poisson));
-  vdec::BlockDefinition& block = s.blocks.emplace_back();
-  block.name = "block";
-  block.material = "rock";
-  block.vertices = {{0.0, 0.0}, {kSide, 0.0}, {kSide, kSide}, {0.0, kSide}};
-  block.zoning.kind = vdec::ZoningDefinition::Kind::Structured;
-  block.zoning.nx = block.zoning.ny = n;
-  vdec::BoundaryDefinition& base = s.boundaries.emplace_back();
-  base.block = "block";
-  base.y = {0.0, 0.0};
-  base.fix = vdec::DriveX | vdec::DriveY;
-  vdec::BoundaryDefinition& top = s.boundaries.emplace_back();
-  top.block = "block";
-  top.y = {kSide, kSide};
-  top.loaded = true;
-  top.stress = {0.0, -1e6, 0.0};
-  return vdec::buildScene(std::move(s));
-}
 
 // The scene of each size is built once and shared by its thread counts (building the 1e6-zone
 // block takes seconds: mesh generation, boundary edges, mesh quality).
@@ -90,7 +59,7 @@ const vdec::Scene& sceneOfSize(int n) {
   static std::map<int, vdec::Scene> scenes;
   if (auto it = scenes.find(n); it != scenes.end()) return it->second;
   scenes.clear();  // one size at a time: the 1e6-zone model is about 150 MB
-  return scenes.emplace(n, buildBlock(n)).first->second;
+  return scenes.emplace(n, vdec::bench::elasticBlock(n)).first->second;
 }
 
 void RunBlock(benchmark::State& state, vdec::VectorUnit unit) {
@@ -116,7 +85,7 @@ void RunBlock(benchmark::State& state, vdec::VectorUnit unit) {
   vdec::Model model = scene.model;
   {
     vdec::Gridpoints& g = model.gridpoints;
-    const double c = 0.5 * kSide;
+    const double c = 0.5 * vdec::bench::kElasticBlockSide;
     for (int i = 0; i < g.size(); ++i) {
       const vdec::Vec2 r = g.position[i] - vdec::Vec2{c, c};
       if (!(g.driven[i] & vdec::DriveX)) g.velocity[i].x = -kSpin * r.y;
