@@ -72,9 +72,7 @@ int runScene(const RunOptions& options) {
   vdec::RunEnvironment environment;
   environment.threadsOption = options.threads;
   environment.threads = options.threads > 0 ? options.threads
-                        : vdec::automaticThreadCount(static_cast<long long>(scene.model.zones.size()) +
-                                                         scene.model.gridpoints.size(),
-                                                     vdec::availableThreads());
+                        : vdec::automaticThreadCount(vdec::workPerStep(scene.model), vdec::availableThreads());
   vdec::ThreadTeam::instance().setThreadCount(environment.threads);
   const std::vector<int> saveAfter = phasesToSave(options, scene);
   vdec::Cycle cycle(scene.model, scene.settings, scene.histories);

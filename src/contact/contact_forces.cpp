@@ -1,6 +1,7 @@
 #include "contact/contact_forces.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -8,6 +9,8 @@
 #include "contact/contact_geometry.hpp"
 #include "contact/strained_outline.hpp"
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
+#include "core/thread_team.hpp"
 #include "joint/joint_laws.hpp"
 
 namespace vdec {
@@ -65,18 +68,36 @@ void addPointForce(Model& m, const BlockPoint& p, Vec2 f) {
   if (p.gridpoint[1] >= 0) m.gridpoints.contactForce[p.gridpoint[1]] += p.weight[1] * f;
 }
 
-}  // namespace
+// What a contact's update leaves for the blocks: the force on A from B and its moments.
+struct ContactLoad {
+  Vec2 force;
+  double momentA = 0.0, momentB = 0.0;  // about the centroids, of force on A and of -force on B
+  bool applied = false;                 // false for a skipped contact
+};
 
-ContactStepTotals computeContactForces(Model& m, double dt, double motionClock, double beta) {
-  ContactStepTotals totals;
+// Where the force acts on deformable outlines and on simply-deformable blocks' strain modes,
+// kept only in scenes that have them (the loads of a rigid scene stay small).
+struct ContactPoints {
+  BlockPoint pa, pb;     // on a deformable outline: its gridpoints
+  int ka = -1, kb = -1;  // simply-deformable blocks' strain modes, and where the force acts
+  Vec2 Xa, Xb;           // in their body frames
+};
+
+// Contact i's update: its geometry, increments, joint law, energies and force. Reads the blocks
+// and writes only the contact, its yielding state, `load` and `totals`, so that contacts can be
+// updated on several threads. Returns false, leaving the load unapplied, when the contact
+// overlaps more than half the rounding length.
+bool updateContact(Model& m, std::size_t i, double dt, double motionClock, double beta, ContactStepTotals& totals,
+                   ContactLoad& load, ContactPoints* points) {
   Blocks& bl = m.blocks;
   const bool strained = m.strainModes.size() > 0;
   const double overlapLimit = 0.5 * m.roundingLength;
-  for (std::size_t i = 0; i < m.contacts.size(); ++i) {
+  load.applied = false;
+  {
     Contact& c = m.contacts[i];
     if (c.open && motionClock < c.closableAt) {
       c.skipped = true;
-      continue;
+      return true;
     }
     const bool caughtUp = c.skipped;
     c.skipped = false;
@@ -94,7 +115,7 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock, 
     c.feature = hit.feature;
     c.featureKind = hit.kind;
     c.overlap = hit.overlap;
-    if (c.overlap > overlapLimit) reportOverlap(m, c, i);
+    if (c.overlap > overlapLimit) return false;
 
     const int a = c.blockA, b = c.blockB;
     const Vec2 ra = hit.point - bl.centroid[a], rb = hit.point - bl.centroid[b];
@@ -169,20 +190,11 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock, 
     }
     // Force on A from B; the shear force resists A's motion along the tangent.
     const Vec2 f = (fn + fnViscous) * hit.normal - (fs + fsViscous) * tangent;
-    if (pa.onGridpoints()) {
-      addPointForce(m, pa, f);
-    } else {
-      bl.force[a] += f;
-      bl.moment[a] += cross(ra, f);
-      if (ka >= 0) addStrainForceAt(modes, ka, Xa, f);
-    }
-    if (pb.onGridpoints()) {
-      addPointForce(m, pb, -f);
-    } else {
-      bl.force[b] -= f;
-      bl.moment[b] -= cross(rb, f);
-      if (kb >= 0) addStrainForceAt(modes, kb, Xb, -f);
-    }
+    load.applied = true;
+    load.force = f;
+    load.momentA = pa.onGridpoints() ? 0.0 : cross(ra, f);
+    load.momentB = pb.onGridpoints() ? 0.0 : cross(rb, f);
+    if (points) *points = {pa, pb, ka, kb, Xa, Xb};
 
     if (!c.open) {
       if (j.law == JointLaw::ContinuouslyYielding && (bl.movesFreely(a) || bl.movesFreely(b))) {
@@ -197,7 +209,103 @@ ContactStepTotals computeContactForces(Model& m, double dt, double motionClock, 
       ++totals.closedContacts;
     }
   }
-  return totals;
+  return true;
+}
+
+// The load on both blocks: on a rigid or simply-deformable block its force and moment (and the
+// strain modes' loads), on a deformable outline its gridpoints' contact forces.
+void applyLoad(Model& m, const Contact& c, const ContactLoad& load, const ContactPoints* points) {
+  Blocks& bl = m.blocks;
+  const Vec2 f = load.force;
+  if (points && points->pa.onGridpoints()) {
+    addPointForce(m, points->pa, f);
+  } else {
+    bl.force[c.blockA] += f;
+    bl.moment[c.blockA] += load.momentA;
+    if (points && points->ka >= 0) addStrainForceAt(m.strainModes, points->ka, points->Xa, f);
+  }
+  if (points && points->pb.onGridpoints()) {
+    addPointForce(m, points->pb, -f);
+  } else {
+    bl.force[c.blockB] -= f;
+    bl.moment[c.blockB] -= load.momentB;
+    if (points && points->kb >= 0) addStrainForceAt(m.strainModes, points->kb, points->Xb, -f);
+  }
+}
+
+}  // namespace
+
+namespace {
+
+struct ContactPartial {
+  ContactStepTotals totals;
+  int firstOverlap = std::numeric_limits<int>::max();
+};
+
+void mergeContactPartial(ContactPartial& total, const ContactPartial& part) {
+  ContactStepTotals& t = total.totals;
+  const ContactStepTotals& q = part.totals;
+  t.strainEnergy += q.strainEnergy;
+  t.jointRelease += q.jointRelease;
+  t.sumForceMagnitude += q.sumForceMagnitude;
+  t.slipDissipation += q.slipDissipation;
+  t.viscousDissipation += q.viscousDissipation;
+  t.closedContacts += q.closedContacts;
+  if (q.largestGrownStiffness > t.largestGrownStiffness) {  // the first contact of the largest
+    t.largestGrownStiffness = q.largestGrownStiffness;
+    t.stiffestContact = q.stiffestContact;
+  }
+  t.passedCorners.insert(t.passedCorners.end(), q.passedCorners.begin(), q.passedCorners.end());
+  total.firstOverlap = std::min(total.firstOverlap, part.firstOverlap);
+}
+
+}  // namespace
+
+ContactStepTotals computeContactForces(Model& m, double dt, double motionClock, double beta) {
+  // The contacts go in fixed chunks whose sums are combined in chunk order (core/parallel.hpp),
+  // and their loads are applied to the blocks in contact order, so that every sum is formed in
+  // the same order at any thread count. On one thread each load is applied as it is formed; on
+  // several, the chunks are shared and the loads applied afterwards.
+  const int count = static_cast<int>(m.contacts.size());
+  const bool withPoints = m.zones.size() > 0 || m.strainModes.size() > 0;
+  ContactPartial all;
+  if (ThreadTeam::instance().threadCount() == 1) {
+    ContactLoad load;
+    ContactPoints points;
+    ContactPoints* at = withPoints ? &points : nullptr;
+    for (int begin = 0; begin < count; begin += kReduceChunk) {
+      ContactPartial part;
+      for (int i = begin; i < std::min(count, begin + kReduceChunk); ++i) {
+        const auto c = static_cast<std::size_t>(i);
+        if (!updateContact(m, c, dt, motionClock, beta, part.totals, load, at))
+          part.firstOverlap = std::min(part.firstOverlap, i);
+        else if (load.applied)
+          applyLoad(m, m.contacts[c], load, at);
+      }
+      mergeContactPartial(all, part);
+    }
+  } else {
+    // Kept from step to step: no allocation while running.
+    static thread_local std::vector<ContactLoad> loadBuffer;
+    static thread_local std::vector<ContactPoints> pointBuffer;
+    std::vector<ContactLoad>& loads = loadBuffer;
+    std::vector<ContactPoints>& points = pointBuffer;
+    loads.resize(m.contacts.size());
+    points.resize(withPoints ? m.contacts.size() : 0);
+    all = deterministicReduceChunks<ContactPartial>(count, [&](int begin, int end, ContactPartial& part) {
+      for (int i = begin; i < end; ++i) {
+        const auto c = static_cast<std::size_t>(i);
+        if (!updateContact(m, c, dt, motionClock, beta, part.totals, loads[c], withPoints ? &points[c] : nullptr))
+          part.firstOverlap = std::min(part.firstOverlap, i);
+      }
+    }, mergeContactPartial);
+    if (all.firstOverlap == std::numeric_limits<int>::max())
+      for (std::size_t i = 0; i < m.contacts.size(); ++i)
+        if (loads[i].applied) applyLoad(m, m.contacts[i], loads[i], withPoints ? &points[i] : nullptr);
+  }
+  if (all.firstOverlap != std::numeric_limits<int>::max())
+    reportOverlap(m, m.contacts[static_cast<std::size_t>(all.firstOverlap)], static_cast<std::size_t>(all.firstOverlap));
+  return all.totals;
 }
 
 }  // namespace vdec

@@ -9,6 +9,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/model.hpp"
 #include "core/thread_team.hpp"
 
 namespace vdec {
@@ -16,12 +17,20 @@ namespace vdec {
 inline constexpr int kReduceChunk = 256;
 
 // The work of a step that the threads share: the zone-forces and gridpoint-motion loops, over
-// zones and gridpoints. Contacts are computed on one thread and do not count.
+// zones and gridpoints, and the contact updates, counted as three elements per block corner
+// (a contact costs about three zones, and a lattice has about one and a half contacts per
+// corner) when there is more than one block to touch.
 // Below kWorkForThreads elements per step a second thread does not pay: a loop's chunks are then
 // few, and with another job on the machine two threads lost 5 % there. Measured on a 2-core
 // machine: two threads 1.6 times as fast as one at 3 800 elements (2 500 zones) when idle, 0.95
-// with one core busy; 1.7 and 0.99 at 15 000 (docs/performance.md#threads).
+// with one core busy; 1.7 and 0.99 at 15 000; a 1 000-block lattice (12 000) 1.4 times as fast
+// (docs/performance.md#threads).
 inline constexpr long long kWorkForThreads = 8000;
+
+inline long long workPerStep(const Model& m) {
+  const long long corners = m.blocks.size() > 1 ? m.vertices.size() : 0;
+  return static_cast<long long>(m.zones.size()) + m.gridpoints.size() + 3 * corners;
+}
 
 // The thread count for a run that does not set one: one below kWorkForThreads, else all
 // `available` (availableThreads()).
