@@ -29,14 +29,14 @@ namespace {
 
 // Gridpoints [begin, end) of one chunk, in tiles. The zone forces are summed first, each
 // gridpoint's in zone order (the fixed order of the sum) from where the zone loop stored them
-// (Zones::nodalForce), with the other inputs copied into arrays. The motion of the
-// whole tile is then integrated in one loop without branches over arrays of doubles, which the
-// compiler vectorises: a driven component keeps its velocity by a select, and each of the step's
-// sums gets a term per component, zero where a plain gridpoint loop adds nothing (adding zero to
-// a sum that starts at +0 leaves it bitwise unchanged). Last, the terms are added to the sums
-// gridpoint by gridpoint and x before y, in locals that the model's arrays cannot alias; so the
-// results are bitwise those of the plain loop. The rate of change of kinetic energy is divided by dt once per chunk, not per
-// gridpoint. Compiled once per vector unit (core/vector_unit.hpp).
+// (Zones::nodalForce), with the other inputs copied into arrays. The motion of the whole tile is
+// then integrated in one loop without branches over arrays of doubles, which the compiler
+// vectorises: a driven component keeps its velocity by a select, and each of the step's sums gets
+// a term per component, zero where a plain gridpoint loop adds nothing (adding zero to a sum that
+// starts at +0 leaves it bitwise unchanged). Last, the terms are added to the sums gridpoint by
+// gridpoint and x before y, in locals that the model's arrays cannot alias; so the results are
+// bitwise those of the plain loop. The rate of change of kinetic energy is divided by dt once per
+// chunk, not per gridpoint. Compiled once per vector unit (core/vector_unit.hpp).
 [[gnu::always_inline]] inline void integrateChunk(Model& m, double dt, double alpha, double local, int begin, int end,
                                                   MotionStepTotals& t) {
   Gridpoints& g = m.gridpoints;
