@@ -111,14 +111,15 @@ namespace {
 struct ZoneLaw {
   double a1, a2, twoG, halfInverseBulk, quarterInverseShear;
   const BlockMaterial* material;
-  bool plastic;
+  bool plastic;  // the material's, here so that the gather of a tile need not follow the pointer
 };
 
-// p^2 / 2K + s:s / 4G, as elasticEnergyDensity, with the law's reciprocals.
-inline double energyDensity(const ZoneLaw& law, double sxx, double syy, double sxy, double szz) {
+// p^2 / 2K + s:s / 4G, as elasticEnergyDensity, with the law's reciprocals 1 / 2K and 1 / 4G.
+inline double energyDensity(double halfInverseBulk, double quarterInverseShear, double sxx, double syy, double sxy,
+                            double szz) {
   const double p = (sxx + syy + szz) * (1.0 / 3.0);
   const double dx = sxx - p, dy = syy - p, dz = szz - p;
-  return p * p * law.halfInverseBulk + (dx * dx + dy * dy + dz * dz + 2.0 * sxy * sxy) * law.quarterInverseShear;
+  return p * p * halfInverseBulk + (dx * dx + dy * dy + dz * dz + 2.0 * sxy * sxy) * quarterInverseShear;
 }
 
 struct ZoneSums {
@@ -200,40 +201,46 @@ struct ZoneSums {
       sxy[k] = rxy + twoG[k] * exy;
       szz[k] = szz[k] + a2[k] * (exx + eyy);
     }
+    // Nodal forces (1.4-116) on the configuration reached: F_i = -A sigma grad N_i, which is
+    // -(1/2) sigma (n1 S1 + n2 S2) over the two sides at node i; tension positive. `fxx`, `fyy`,
+    // `fxy`: the zone's stress, with stiffness damping plus the viscous stress of its elastic
+    // increment. And the zone's elastic energy.
+    double f0x[kTile], f0y[kTile], f1x[kTile], f1y[kTile], f2x[kTile], f2y[kTile], energy[kTile];
+    auto forces = [&](int k, double fxx, double fyy, double fxy) __attribute__((always_inline)) {
+      const double cx0 = 0.5 * (p1y[k] - p2y[k]), cx1 = 0.5 * (p2y[k] - p0y[k]), cx2 = 0.5 * (p0y[k] - p1y[k]);
+      const double cy0 = 0.5 * (p2x[k] - p1x[k]), cy1 = 0.5 * (p0x[k] - p2x[k]), cy2 = 0.5 * (p1x[k] - p0x[k]);
+      f0x[k] = -(fxx * cx0 + fxy * cy0), f0y[k] = -(fxy * cx0 + fyy * cy0);
+      f1x[k] = -(fxx * cx1 + fxy * cy1), f1y[k] = -(fxy * cx1 + fyy * cy1);
+      f2x[k] = -(fxx * cx2 + fxy * cy2), f2y[k] = -(fxy * cx2 + fyy * cy2);
+      energy[k] = (0.5 * twiceArea[k]) *
+                  energyDensity(halfInverseBulk[k], quarterInverseShear[k], sxx[k], syy[k], sxy[k], szz[k]);
+    };
+    // The viscous stress of the elastic increment, whose work over the increment is dissipated.
+    double work[kTile], vxx[kTile], vyy[kTile], vxy[kTile];
+    auto viscousStress = [&](int k) __attribute__((always_inline)) {
+      vxx[k] = viscous * (a1[k] * ex[k] + a2[k] * ey[k]), vyy[k] = viscous * (a2[k] * ex[k] + a1[k] * ey[k]);
+      vxy[k] = viscous * twoG[k] * 0.5 * exy2[k];
+      work[k] = (0.5 * twiceArea[k]) * (vxx[k] * ex[k] + vyy[k] * ey[k] + vxy[k] * exy2[k]);
+    };
+    auto store = [&](int k) __attribute__((always_inline)) {
+      const int z = tile + k;
+      zn.sxx[z] = sxx[k], zn.syy[z] = syy[k], zn.sxy[z] = sxy[k], zn.szz[z] = szz[k];
+      const int* at = &place[3 * z];
+      nodalForce[at[0]] = {f0x[k], f0y[k]}, nodalForce[at[1]] = {f1x[k], f1y[k]}, nodalForce[at[2]] = {f2x[k], f2y[k]};
+    };
     bool invertedTile = false;
     for (int k = 0; k < size; ++k) invertedTile |= !(twiceArea[k] > 0.0) | !(halfStepArea[k] > 0.0);
     if (!plasticTile && !invertedTile) {
-      // Nodal forces (1.4-116) on the configuration reached: F_i = -A sigma grad N_i, which is
-      // -(1/2) sigma (n1 S1 + n2 S2) over the two sides at node i; tension positive. With
-      // stiffness damping, the viscous stress of the elastic increment too, whose work over the
-      // increment is dissipated.
-      double f0x[kTile], f0y[kTile], f1x[kTile], f1y[kTile], f2x[kTile], f2y[kTile], energy[kTile], work[kTile];
-      auto forces = [&](int k, double fxx, double fyy, double fxy) __attribute__((always_inline)) {
-        const double cx0 = 0.5 * (p1y[k] - p2y[k]), cx1 = 0.5 * (p2y[k] - p0y[k]), cx2 = 0.5 * (p0y[k] - p1y[k]);
-        const double cy0 = 0.5 * (p2x[k] - p1x[k]), cy1 = 0.5 * (p0x[k] - p2x[k]), cy2 = 0.5 * (p1x[k] - p0x[k]);
-        f0x[k] = -(fxx * cx0 + fxy * cy0), f0y[k] = -(fxy * cx0 + fyy * cy0);
-        f1x[k] = -(fxx * cx1 + fxy * cy1), f1y[k] = -(fxy * cx1 + fyy * cy1);
-        f2x[k] = -(fxx * cx2 + fxy * cy2), f2y[k] = -(fxy * cx2 + fyy * cy2);
-        const double p = (sxx[k] + syy[k] + szz[k]) * (1.0 / 3.0);
-        const double dx = sxx[k] - p, dy = syy[k] - p, dz = szz[k] - p;
-        energy[k] = (0.5 * twiceArea[k]) * (p * p * halfInverseBulk[k] +
-                                            (dx * dx + dy * dy + dz * dz + 2.0 * sxy[k] * sxy[k]) * quarterInverseShear[k]);
-      };
       if (viscous > 0.0) {
         for (int k = 0; k < size; ++k) {
-          const double vxx = viscous * (a1[k] * ex[k] + a2[k] * ey[k]), vyy = viscous * (a2[k] * ex[k] + a1[k] * ey[k]);
-          const double vxy = viscous * twoG[k] * 0.5 * exy2[k];
-          work[k] = (0.5 * twiceArea[k]) * (vxx * ex[k] + vyy * ey[k] + vxy * exy2[k]);
-          forces(k, sxx[k] + vxx, syy[k] + vyy, sxy[k] + vxy);
+          viscousStress(k);
+          forces(k, sxx[k] + vxx[k], syy[k] + vyy[k], sxy[k] + vxy[k]);
         }
       } else {
         for (int k = 0; k < size; ++k) forces(k, sxx[k], syy[k], sxy[k]);
       }
       for (int k = 0; k < size; ++k) {
-        const int z = tile + k;
-        zn.sxx[z] = sxx[k], zn.syy[z] = syy[k], zn.sxy[z] = sxy[k], zn.szz[z] = szz[k];
-        const int* at = &place[3 * z];
-        nodalForce[at[0]] = {f0x[k], f0y[k]}, nodalForce[at[1]] = {f1x[k], f1y[k]}, nodalForce[at[2]] = {f2x[k], f2y[k]};
+        store(k);
         strainSum += energy[k];
       }
       if (viscous > 0.0)
@@ -248,38 +255,30 @@ struct ZoneSums {
       }
       const ZoneLaw& law = laws[zn.material[z]];
       const BlockMaterial& mat = *law.material;
-      const double area = 0.5 * twiceArea[k];
       bool yielded = false;
       if (mat.plastic) {
         // The plastic strain of the return is C^-1 (trial - returned) and the stress over it
         // is on average (trial + returned) / 2, so the work it absorbs is W(trial) -
         // W(returned) for the quadratic elastic energy W: exact, and no further state is needed.
-        const double trialEnergy = energyDensity(law, sxx[k], syy[k], sxy[k], szz[k]);
+        const double trialEnergy = energyDensity(law.halfInverseBulk, law.quarterInverseShear, sxx[k], syy[k], sxy[k], szz[k]);
         const std::uint8_t now = mohrCoulombReturn(mat.mohrCoulomb, law.a1, law.a2, sxx[k], syy[k], sxy[k], szz[k]);
-        if (now != Elastic) plasticSum += area * (trialEnergy - energyDensity(law, sxx[k], syy[k], sxy[k], szz[k]));
+        if (now != Elastic)
+          plasticSum += (0.5 * twiceArea[k]) *
+                        (trialEnergy - energyDensity(law.halfInverseBulk, law.quarterInverseShear, sxx[k], syy[k], sxy[k], szz[k]));
         yielded = now != Elastic;
         zn.plasticState[z] = static_cast<std::uint8_t>(now | ((zn.plasticState[z] & (ShearNow | TensionNow | PlasticInPast)) ? PlasticInPast : 0));
       }
-      zn.sxx[z] = sxx[k];
-      zn.syy[z] = syy[k];
-      zn.sxy[z] = sxy[k];
-      zn.szz[z] = szz[k];
-      // Nodal forces (1.4-116) on the configuration reached: F_i = -A sigma grad N_i, which is
-      // -(1/2) sigma (n1 S1 + n2 S2) over the two sides at node i; tension positive.
-      const double cx[3] = {0.5 * (p1y[k] - p2y[k]), 0.5 * (p2y[k] - p0y[k]), 0.5 * (p0y[k] - p1y[k])};
-      const double cy[3] = {0.5 * (p2x[k] - p1x[k]), 0.5 * (p0x[k] - p2x[k]), 0.5 * (p1x[k] - p0x[k])};
-      double fxx = sxx[k], fyy = syy[k], fxy = sxy[k];
+      // The viscous stress is dropped while the zone yields, as a slipping contact drops its
+      // shear part.
       if (viscous > 0.0 && !yielded) {
-        // Dropped while the zone yields, as a slipping contact drops its shear part: the
-        // viscous stress of the elastic increment, whose work over the increment is dissipated.
-        const double vxx = viscous * (a1[k] * ex[k] + a2[k] * ey[k]), vyy = viscous * (a2[k] * ex[k] + a1[k] * ey[k]);
-        const double vxy = viscous * twoG[k] * 0.5 * exy2[k];
-        fxx += vxx, fyy += vyy, fxy += vxy;
-        viscousSum += area * (vxx * ex[k] + vyy * ey[k] + vxy * exy2[k]);
+        viscousStress(k);
+        viscousSum += work[k];
+        forces(k, sxx[k] + vxx[k], syy[k] + vyy[k], sxy[k] + vxy[k]);
+      } else {
+        forces(k, sxx[k], syy[k], sxy[k]);
       }
-      for (int corner = 0; corner < 3; ++corner)
-        nodalForce[place[3 * z + corner]] = {-(fxx * cx[corner] + fxy * cy[corner]), -(fxy * cx[corner] + fyy * cy[corner])};
-      strainSum += area * energyDensity(law, sxx[k], syy[k], sxy[k], szz[k]);
+      store(k);
+      strainSum += energy[k];
     }
   }
   acc.strain = strainSum, acc.plastic = plasticSum, acc.viscous = viscousSum, acc.firstInverted = firstInverted;

@@ -1,5 +1,6 @@
 """Running vdec on a scene written into a test's tmp_path: the executable (VDEC_EXECUTABLE, or the
-build tree's), a skip mark for when it is not built, and run()."""
+build tree's), a skip mark for when it is not built, run(), and lattice(), a scene of stacked
+blocks."""
 import json
 import os
 import subprocess
@@ -40,3 +41,37 @@ def restart(tmp_path, name, state, out):
                            "--restart", str(state)], capture_output=True, text=True, timeout=120)
     results = tmp_path / out / "results.json"
     return done, json.loads(results.read_text()) if results.is_file() else None
+
+
+def lattice(columns, rows, cycles, zoning=""):
+    """1 m square blocks stacked columns x rows on a fixed base 1 m thick, Coulomb joints (kn = ks =
+    1e9 Pa/m, 30 degrees), gravity, no damping (as bench/rigid_lattice_bench.cpp), stopped after
+    `cycles`; the block in column c, row r is b{c}_{r}. Rigid, or deformable with `zoning` (a
+    block's zoning table) and elastic rock."""
+    elastic = "young = 10e9\npoisson = 0.25\n" if zoning else ""
+    text = f"""[model]
+rounding = 0.01
+gravity = [0.0, -9.81]
+[stop]
+cycles = {cycles}
+[[block_material]]
+name = "rock"
+density = 2500.0
+{elastic}[[joint_material]]
+name = "joint"
+kn = 1e9
+ks = 1e9
+friction = 30.0
+[[block]]
+name = "base"
+material = "rock"
+vertices = [[0.0, -1.0], [{columns}.0, -1.0], [{columns}.0, 0.0], [0.0, 0.0]]
+fix = ["x", "y", "rotation"]
+"""
+    for r in range(rows):
+        for c in range(columns):
+            text += (f'[[block]]\nname = "b{c}_{r}"\nmaterial = "rock"\n'
+                     f"vertices = [[{c}.0, {r}.0], [{c + 1}.0, {r}.0], [{c + 1}.0, {r + 1}.0], [{c}.0, {r + 1}.0]]\n")
+            if zoning:
+                text += f"zoning = {zoning}\n"
+    return text

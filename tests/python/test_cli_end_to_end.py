@@ -6,6 +6,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from scene_runs import lattice
 
 ROOT = Path(__file__).resolve().parents[2]
 VDEC = os.environ.get("VDEC_EXECUTABLE", str(ROOT / "build" / "vdec"))
@@ -302,32 +303,6 @@ def test_check_refuses_a_bad_scene_as_a_run_does(tmp_path):
                          capture_output=True, text=True, timeout=60)
     assert done.returncode == ran.returncode == 3
     assert "solver.frac" in done.stderr and done.stderr == ran.stderr
-
-
-def lattice(columns, rows, cycles):
-    """Rigid square blocks stacked on a fixed base under gravity, undamped, stopped on cycles."""
-    text = """[model]
-rounding = 0.01
-gravity = [0.0, -9.81]
-[[block_material]]
-name = "rock"
-density = 2500.0
-[[joint_material]]
-name = "joint"
-kn = 1e9
-ks = 1e9
-friction = 30.0
-[[block]]
-name = "base"
-material = "rock"
-vertices = [[0.0, -1.0], [%d.0, -1.0], [%d.0, 0.0], [0.0, 0.0]]
-fix = ["x", "y", "rotation"]
-""" % (columns, columns)
-    for r in range(rows):
-        for c in range(columns):
-            text += (f'[[block]]\nname = "b{c}_{r}"\nmaterial = "rock"\n'
-                     f'vertices = [[{c}.0, {r}.0], [{c + 1}.0, {r}.0], [{c + 1}.0, {r + 1}.0], [{c}.0, {r + 1}.0]]\n')
-    return text + f"[stop]\ncycles = {cycles}\n"
 
 
 @pytest.mark.requirements("REQ-IO-005")

@@ -11,6 +11,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench"))
 import thread_threshold  # noqa: E402  the benchmark's scene
+from scene_runs import lattice  # noqa: E402
 
 VDEC = os.environ.get("VDEC_EXECUTABLE", str(ROOT / "build" / "vdec"))
 
@@ -92,43 +93,11 @@ def test_bad_thread_count_is_a_usage_error(tmp_path, value):
     assert results is None
 
 
-def lattice(columns, rows, cycles, zoning=""):
-    """1 m square blocks stacked columns x rows on a fixed base, Coulomb joints, gravity, no
-    damping (as bench/rigid_lattice_bench.cpp), with a history of a top block's motion; rigid, or
-    deformable with `zoning` (a block's zoning table) and elastic rock."""
-    text = f"""
-[model]
-gravity = [0.0, -9.81]
-rounding = 0.01
-[stop]
-cycles = {cycles}
-[[block_material]]
-name = "rock"
-density = 2500.0
-{"young = 10e9" + chr(10) + "poisson = 0.25" if zoning else ""}
-[[joint_material]]
-name = "joint"
-kn = 1e9
-ks = 1e9
-friction = 30.0
-[[block]]
-name = "base"
-material = "rock"
-vertices = [[0.0, -1.0], [{columns}.0, -1.0], [{columns}.0, 0.0], [0.0, 0.0]]
-fix = ["x", "y", "rotation"]
-"""
-    for i in range(columns):
-        for j in range(rows):
-            text += (f'[[block]]\nname = "b{i}_{j}"\nmaterial = "rock"\n'
-                     f"vertices = [[{i}.0, {j}.0], [{i + 1}.0, {j}.0], [{i + 1}.0, {j + 1}.0], [{i}.0, {j + 1}.0]]\n")
-            if zoning:
-                text += f"zoning = {zoning}\n"
-    return text + f"""[[history]]
-name = "top"
-quantity = "{'gridpoint.velocity_y' if zoning else 'block.velocity_y'}"
-block = "b{columns // 2}_{rows - 1}"
-{f"point = [{columns // 2}.5, {rows}.0]" if zoning else ""}
-"""
+def lattice_with_history(columns, rows, cycles, zoning=""):
+    """scene_runs.lattice with a history of a top block's vertical velocity."""
+    quantity, point = ("gridpoint.velocity_y", f"point = [{columns // 2}.5, {rows}.0]\n") if zoning else ("block.velocity_y", "")
+    return lattice(columns, rows, cycles, zoning) + (f'[[history]]\nname = "top"\nquantity = "{quantity}"\n'
+                                                     f'block = "b{columns // 2}_{rows - 1}"\n{point}')
 
 
 @pytest.mark.requirements("REQ-RUN-010")
@@ -136,7 +105,7 @@ block = "b{columns // 2}_{rows - 1}"
 def test_contacts_on_one_and_two_threads_give_bitwise_identical_results(tmp_path, zoning):
     # 200 blocks, over 1 000 contacts: several chunks of 256, so the contact updates split; on
     # deformable blocks the forces go to the outlines' gridpoints.
-    text = lattice(20, 10, 300, zoning)
+    text = lattice_with_history(20, 10, 300, zoning)
     one_done, one = run(tmp_path, text, "--threads", "1", name="one")
     two_done, two = run(tmp_path, text, "--threads", "2", name="two")
     assert one_done.returncode == 0, one_done.stderr
